@@ -1,0 +1,268 @@
+#include "rcdem/io/scenario.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <toml++/toml.h>
+
+#include "rcdem/core/error.hpp"
+#include "rcdem/specimens/specimen_registry.hpp"
+
+namespace rcdem {
+
+namespace {
+
+using io::KeyDecl;
+using io::KeyType;
+using io::Schema;
+using io::Value;
+
+struct Reader {
+  const Schema& schema;
+  std::string file;
+  std::map<std::string, Value> values;
+  std::map<std::string, int> lines;
+
+  std::string where(const toml::node& node) const {
+    return fmt::format("{}:{}", file, node.source().begin.line);
+  }
+
+  [[noreturn]] void bad_value(const toml::node& node, const KeyDecl& decl,
+                              const std::string& got) const {
+    fail("{}: key '{}': expected {}, got {}", where(node), decl.path,
+         Schema::describe_expected(decl), got);
+  }
+
+  static std::string describe_node(const toml::node& node) {
+    std::ostringstream s;
+    if (node.is_string())
+      s << '"' << *node.value<std::string>() << '"';
+    else if (node.is_table())
+      s << "a table";
+    else if (node.is_array())
+      s << "an array";
+    else
+      node.visit([&](const auto& v) {
+        if constexpr (toml::is_value<decltype(v)>) s << v;
+      });
+    return s.str();
+  }
+
+  bool in_range(double v, const io::Range& r) const {
+    if (!std::isfinite(v)) return false;
+    if (r.min_exclusive ? !(v > r.min) : !(v >= r.min)) return false;
+    if (r.max_exclusive ? !(v < r.max) : !(v <= r.max)) return false;
+    return true;
+  }
+
+  std::optional<double> number(const toml::node& node) const {
+    if (auto f = node.value_exact<double>()) return *f;
+    if (auto i = node.value_exact<std::int64_t>()) return static_cast<double>(*i);
+    return std::nullopt;
+  }
+
+  void read_key(const toml::node& node, const KeyDecl& decl) {
+    Value value;
+    switch (decl.type) {
+      case KeyType::Real: {
+        const auto v = number(node);
+        if (!v) bad_value(node, decl, describe_node(node));
+        if (!in_range(*v, decl.range)) bad_value(node, decl, fmt::format("{}", *v));
+        value = *v;
+        break;
+      }
+      case KeyType::Integer: {
+        const auto v = node.value_exact<std::int64_t>();
+        if (!v) bad_value(node, decl, describe_node(node));
+        if (!in_range(static_cast<double>(*v), decl.range))
+          bad_value(node, decl, fmt::format("{}", *v));
+        value = *v;
+        break;
+      }
+      case KeyType::Boolean: {
+        const auto v = node.value_exact<bool>();
+        if (!v) bad_value(node, decl, describe_node(node));
+        value = *v;
+        break;
+      }
+      case KeyType::String: {
+        const auto v = node.value_exact<std::string>();
+        if (!v) bad_value(node, decl, describe_node(node));
+        if (std::find(decl.choices.begin(), decl.choices.end(), *v) == decl.choices.end())
+          bad_value(node, decl, describe_node(node));
+        value = *v;
+        break;
+      }
+      case KeyType::RealArray: {
+        const auto* array = node.as_array();
+        if (!array) bad_value(node, decl, describe_node(node));
+        if (static_cast<int>(array->size()) != decl.array_size)
+          bad_value(node, decl, fmt::format("an array of {} elements", array->size()));
+        std::vector<double> v;
+        for (const auto& element : *array) {
+          const auto x = number(element);
+          if (!x) bad_value(node, decl, describe_node(element) + " in the array");
+          if (!in_range(*x, decl.range)) bad_value(node, decl, fmt::format("{} in the array", *x));
+          v.push_back(*x);
+        }
+        value = std::move(v);
+        break;
+      }
+    }
+    values[decl.path] = std::move(value);
+    lines[decl.path] = static_cast<int>(node.source().begin.line);
+  }
+
+  void read_table(const toml::table& table, const std::string& prefix) {
+    for (const auto& [raw_key, node] : table) {
+      const std::string name(raw_key.str());
+      const std::string path = prefix.empty() ? name : prefix + "." + name;
+      if (node.is_table()) {
+        if (!schema.is_section(path)) unknown(node, path, prefix);
+        read_table(*node.as_table(), path);
+        continue;
+      }
+      const KeyDecl* decl = schema.find_key(path);
+      if (!decl) unknown(node, path, prefix);
+      read_key(node, *decl);
+    }
+  }
+
+  [[noreturn]] void unknown(const toml::node& node, const std::string& path,
+                            const std::string& section) const {
+    std::string known;
+    for (const auto& n : schema.keys_in_section(section)) known += (known.empty() ? "" : ", ") + n;
+    fail("{}: unknown key '{}' (known in [{}]: {})", where(node), path,
+         section.empty() ? "top level" : section, known);
+  }
+
+  void fill_defaults() {
+    for (const auto& decl : schema.keys()) {
+      if (values.count(decl.path)) continue;
+      if (!decl.default_value)
+        fail("{}: missing required key '{}': {}; expected {}", file, decl.path, decl.doc,
+             Schema::describe_expected(decl));
+      values[decl.path] = *decl.default_value;
+    }
+  }
+
+  double real(const std::string& p) const { return std::get<double>(values.at(p)); }
+  std::int64_t integer(const std::string& p) const { return std::get<std::int64_t>(values.at(p)); }
+  bool boolean(const std::string& p) const { return std::get<bool>(values.at(p)); }
+  const std::string& string(const std::string& p) const {
+    return std::get<std::string>(values.at(p));
+  }
+  std::string at(const std::string& p) const {
+    const auto it = lines.find(p);
+    return it == lines.end() ? file + " (default value)" : fmt::format("{}:{}", file, it->second);
+  }
+};
+
+void check_consistency(const Reader& r, const Scenario& s) {
+  const auto& g = s.generation;
+  if (g.aggregate_d_min > g.aggregate_d_max)
+    fail("{}: key 'generation.aggregate.d_min' ({} m) must not exceed "
+         "'generation.aggregate.d_max' ({} m)",
+         r.at("generation.aggregate.d_min"), g.aggregate_d_min, g.aggregate_d_max);
+  if (g.mortar_d_min > g.mortar_d_max)
+    fail("{}: key 'generation.mortar.d_min' ({} m) must not exceed 'generation.mortar.d_max' ({} m)",
+         r.at("generation.mortar.d_min"), g.mortar_d_min, g.mortar_d_max);
+  const Real largest = std::max(g.aggregate_d_max, g.mortar_d_max);
+  const Real smallest_side = s.specimen.size.minCoeff();
+  if (smallest_side < 2.0 * largest)
+    fail("{}: key 'specimen.size': the smallest side ({} m) must be at least two of the largest "
+         "particle diameters ({} m)",
+         r.at("specimen.size"), smallest_side, 2.0 * largest);
+  if (s.specimen.shape != "beam" && s.specimen.notch_depth > 0.0)
+    fail("{}: key 'specimen.notch_depth': a notch needs specimen.shape = \"beam\"",
+         r.at("specimen.notch_depth"));
+  if (s.specimen.notch_depth >= s.specimen.size.z() - 2.0 * largest)
+    fail("{}: key 'specimen.notch_depth' ({} m) must leave at least two particle diameters of the "
+         "depth ({} m)",
+         r.at("specimen.notch_depth"), s.specimen.notch_depth, s.specimen.size.z());
+  const Real aggregate_fraction = g.aggregate_content / g.aggregate_density;
+  if (aggregate_fraction >= 1.0 - g.porosity)
+    fail("{}: key 'generation.aggregate.content': {} kg/m^3 at density {} kg/m^3 fills {:.3f} of "
+         "the volume, which cannot fit below the solid fraction 1 - porosity = {:.3f}",
+         r.at("generation.aggregate.content"), g.aggregate_content, g.aggregate_density,
+         aggregate_fraction, 1.0 - g.porosity);
+}
+
+Scenario convert(Reader& r, const std::string& text) {
+  Scenario s;
+  s.source = r.file;
+  s.text = text;
+  const auto& size = std::get<std::vector<double>>(r.values.at("specimen.size"));
+  s.specimen.shape = r.string("specimen.shape");
+  s.specimen.size = Vec3(size[0], size[1], size[2]);
+  s.specimen.notch_depth = r.real("specimen.notch_depth");
+  s.specimen.notch_width = r.real("specimen.notch_width");
+
+  auto& g = s.generation;
+  g.seed = static_cast<std::uint64_t>(r.integer("generation.seed"));
+  g.porosity = r.real("generation.porosity");
+  g.relaxation_iterations = static_cast<int>(r.integer("generation.relaxation_iterations"));
+  g.min_distance_factor = r.real("generation.min_distance_factor");
+  g.aggregate_content = r.real("generation.aggregate.content");
+  g.aggregate_density = r.real("generation.aggregate.density");
+  g.aggregate_d_min = r.real("generation.aggregate.d_min");
+  g.aggregate_d_max = r.real("generation.aggregate.d_max");
+  g.aggregate_grading =
+      r.string("generation.aggregate.grading") == "fuller" ? Grading::Fuller : Grading::Uniform;
+  g.fuller_exponent = r.real("generation.aggregate.fuller_exponent");
+  g.mortar_d_min = r.real("generation.mortar.d_min");
+  g.mortar_d_max = r.real("generation.mortar.d_max");
+
+  s.tessellation = r.string("tessellation.kind") == "radical" ? TessellationKind::Radical
+                                                               : TessellationKind::Voronoi;
+  auto& c = s.contact;
+  c.E_bar = r.real("contact.E_bar");
+  c.alpha = r.real("contact.alpha");
+  c.mu_c = r.real("contact.mu_c");
+  c.sigma_nt = r.real("contact.sigma_nt");
+  c.tau = r.real("contact.tau");
+  c.G_fn = r.real("contact.G_fn");
+  c.G_fs = r.real("contact.G_fs");
+
+  s.output.binary_vtu = r.string("output.vtu_encoding") == "binary";
+  s.output.write_facets = r.boolean("output.write_facets");
+  s.key_line = r.lines;
+  check_consistency(r, s);
+  validate_specimen(s);
+  return s;
+}
+
+}  // namespace
+
+Scenario parse_scenario(const std::string& text, const std::string& source_name) {
+  toml::table table;
+  try {
+    table = toml::parse(text, source_name);
+  } catch (const toml::parse_error& e) {
+    fail("{}:{}: TOML syntax error: {}", source_name, e.source().begin.line, e.description());
+  }
+  Reader reader{io::scenario_schema(), source_name, {}, {}};
+  reader.read_table(table, "");
+  reader.fill_defaults();
+  return convert(reader, text);
+}
+
+Scenario load_scenario(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec))
+    fail("cannot read scenario '{}': no such file", path.string());
+  if (std::filesystem::is_directory(path, ec))
+    fail("cannot read scenario '{}': it is a directory, expected a TOML file", path.string());
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail("cannot read scenario '{}': permission denied or unreadable", path.string());
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  if (in.bad()) fail("cannot read scenario '{}': read error", path.string());
+  Scenario s = parse_scenario(buffer.str(), path.string());
+  s.source = path;
+  return s;
+}
+
+}  // namespace rcdem

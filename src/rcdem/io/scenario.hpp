@@ -1,0 +1,69 @@
+#pragma once
+// A scenario file, validated against the declared schema and turned into typed settings.
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <string>
+
+#include "rcdem/core/types.hpp"
+#include "rcdem/io/schema.hpp"
+
+namespace rcdem {
+
+struct SpecimenSettings {
+  std::string shape;  // a name in the specimen registry
+  Vec3 size = Vec3::Zero();
+  Real notch_depth = 0.0;
+  Real notch_width = 0.0;
+};
+
+enum class Grading { Uniform, Fuller };
+
+struct GenerationSettings {
+  std::uint64_t seed = 1;
+  Real porosity = 0.10;
+  int relaxation_iterations = 300;
+  Real min_distance_factor = 0.5;
+  Real aggregate_content = 568.5;  // kg/m^3
+  Real aggregate_density = 2700.0;
+  Real aggregate_d_min = 0.008, aggregate_d_max = 0.012;
+  Grading aggregate_grading = Grading::Uniform;
+  Real fuller_exponent = 0.5;
+  Real mortar_d_min = 0.008, mortar_d_max = 0.009;
+};
+
+enum class TessellationKind { Voronoi, Radical };
+
+// Paper Table 2, in SI units.
+struct ContactParameters {
+  Real E_bar = 48.7e9;
+  Real alpha = 0.3;
+  Real mu_c = 0.5;
+  Real sigma_nt = 4.15e6;
+  Real tau = 21.0e6;
+  Real G_fn = 9.002;
+  Real G_fs = 2380.785;
+};
+
+struct OutputSettings {
+  bool binary_vtu = true;
+  bool write_facets = true;
+};
+
+struct Scenario {
+  std::filesystem::path source;  // the file it came from ("" for text)
+  SpecimenSettings specimen;
+  GenerationSettings generation;
+  TessellationKind tessellation = TessellationKind::Voronoi;
+  ContactParameters contact;
+  OutputSettings output;
+  std::string text;                    // the scenario as given, kept for the run directory
+  std::map<std::string, int> key_line;  // where each key was set, for later error messages
+};
+
+// Reads, validates (types, ranges, unknown keys, cross-key consistency) and converts a scenario.
+// Throws rcdem::Error with "file:line: ..." on any problem.
+Scenario load_scenario(const std::filesystem::path& path);
+Scenario parse_scenario(const std::string& text, const std::string& source_name);
+
+}  // namespace rcdem

@@ -1,0 +1,137 @@
+// The declaration of every scenario key: one place, read by the loader, print-schema and the docs.
+#include <limits>
+
+#include "rcdem/io/schema.hpp"
+
+namespace rcdem::io {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+KeyDecl real(std::string path, std::optional<double> def, Range range, std::string unit,
+             std::string doc) {
+  KeyDecl k;
+  k.path = std::move(path);
+  k.type = KeyType::Real;
+  if (def) k.default_value = *def;
+  k.range = range;
+  k.unit = std::move(unit);
+  k.doc = std::move(doc);
+  return k;
+}
+
+KeyDecl positive(std::string path, std::optional<double> def, std::string unit, std::string doc) {
+  return real(std::move(path), def, Range{0.0, kInf, true, false}, std::move(unit), std::move(doc));
+}
+
+KeyDecl choice(std::string path, std::optional<std::string> def, std::vector<std::string> choices,
+               std::string doc) {
+  KeyDecl k;
+  k.path = std::move(path);
+  k.type = KeyType::String;
+  if (def) k.default_value = *def;
+  k.choices = std::move(choices);
+  k.doc = std::move(doc);
+  return k;
+}
+
+Schema build() {
+  Schema s;
+  s.section("specimen", "The specimen's shape. The origin is at a corner; x along the length.");
+  s.key(choice("specimen.shape", std::nullopt, {"box", "beam"},
+               "Specimen builder: 'box' (uniaxial cube) or 'beam' (prism, optional central notch)."));
+  {
+    KeyDecl k;
+    k.path = "specimen.size";
+    k.type = KeyType::RealArray;
+    k.array_size = 3;
+    k.range = Range{0.0, kInf, true, false};
+    k.unit = "m";
+    k.doc = "Outer dimensions [x, y, z]; for a beam [length, width, depth], z vertical.";
+    s.key(k);
+  }
+  s.key(real("specimen.notch_depth", 0.0, Range{0.0, kInf}, "m",
+             "Beam only: depth of a central notch cut up from the bottom face (0 = no notch)."));
+  s.key(positive("specimen.notch_width", 0.003, "m", "Beam only: width of the central notch."));
+
+  s.section("generation", "Particle generation (paper 2.3, SPEC 2).");
+  {
+    KeyDecl k;
+    k.path = "generation.seed";
+    k.type = KeyType::Integer;
+    k.default_value = std::int64_t{1};
+    k.range = Range{0.0, 9.0e15};
+    k.doc = "Random seed: the same seed gives the same packing.";
+    s.key(k);
+  }
+  s.key(real("generation.porosity", 0.10, Range{0.0, 1.0, true, true}, "",
+             "Target porosity n = 1 - sum(sphere volumes) / specimen volume; mortar is added until "
+             "it is reached."));
+  {
+    KeyDecl k;
+    k.path = "generation.relaxation_iterations";
+    k.type = KeyType::Integer;
+    k.default_value = std::int64_t{300};
+    k.range = Range{0.0, 100000.0};
+    k.doc = "Overlap-reducing iterations that make the point set homogeneous and isotropic.";
+    s.key(k);
+  }
+  s.key(real("generation.min_distance_factor", 0.5, Range{0.0, 1.0, true, false}, "",
+             "No centre closer than this times the smaller radius to another centre, or than this "
+             "times its own radius to a face."));
+
+  s.section("generation.aggregate", "Aggregate spheres, placed first.");
+  s.key(real("generation.aggregate.content", 568.5, Range{0.0, kInf}, "kg/m^3",
+             "Aggregate mass per cubic metre of specimen."));
+  s.key(positive("generation.aggregate.density", 2700.0, "kg/m^3",
+                 "Density of the aggregate, turning its mass into a volume of spheres."));
+  s.key(positive("generation.aggregate.d_min", 0.008, "m", "Smallest aggregate diameter."));
+  s.key(positive("generation.aggregate.d_max", 0.012, "m", "Largest aggregate diameter."));
+  s.key(choice("generation.aggregate.grading", std::string("uniform"), {"uniform", "fuller"},
+               "Diameter distribution: 'uniform' in diameter, or 'fuller' (mass passing "
+               "proportional to d^exponent)."));
+  s.key(positive("generation.aggregate.fuller_exponent", 0.5, "",
+                 "Exponent of the Fuller grading curve (used with grading = 'fuller')."));
+
+  s.section("generation.mortar", "Mortar spheres, added after the aggregate until the porosity.");
+  s.key(positive("generation.mortar.d_min", 0.008, "m", "Smallest mortar diameter."));
+  s.key(positive("generation.mortar.d_max", 0.009, "m", "Largest mortar diameter."));
+
+  s.section("tessellation", "VGCM-3D contact network (paper 2.1, SPEC 3).");
+  s.key(choice("tessellation.kind", std::string("voronoi"), {"voronoi", "radical"},
+               "'voronoi' (plain, as in the paper) or 'radical' (Laguerre, weighted by radius)."));
+
+  s.section("contact", "Concrete contact parameters, paper Table 2 (SI units).");
+  s.key(positive("contact.E_bar", 48.7e9, "Pa",
+                 "E-bar: Young's modulus of the equivalent continuum; k_n = E_bar A_c / d (3)."));
+  s.key(real("contact.alpha", 0.3, Range{0.0, kInf}, "", "alpha: k_s = alpha k_n (4)."));
+  s.key(real("contact.mu_c", 0.5, Range{0.0, kInf}, "", "mu_c: contact friction coefficient."));
+  s.key(positive("contact.sigma_nt", 4.15e6, "Pa",
+                 "sigma_n,t: contact tensile strength; F_n,max = sigma_n,t A_c (5)."));
+  s.key(positive("contact.tau", 21.0e6, "Pa", "tau: contact cohesion; C_max = tau A_c (6)."));
+  s.key(positive("contact.G_fn", 9.002, "J/m^2", "G_f,n: fracture energy in tension."));
+  s.key(positive("contact.G_fs", 2380.785, "J/m^2", "G_f,s: fracture energy in shear."));
+
+  s.section("output", "What is written and how.");
+  s.key(choice("output.vtu_encoding", std::string("binary"), {"binary", "ascii"},
+               "VTU data encoding: 'binary' (base64, compact) or 'ascii' (readable)."));
+  {
+    KeyDecl k;
+    k.path = "output.write_facets";
+    k.type = KeyType::Boolean;
+    k.default_value = true;
+    k.doc = "Write facets.vtu (the contact facets as polygons).";
+    s.key(k);
+  }
+  return s;
+}
+
+}  // namespace
+
+const Schema& scenario_schema() {
+  static const Schema schema = build();
+  return schema;
+}
+
+}  // namespace rcdem::io

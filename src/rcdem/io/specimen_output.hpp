@@ -1,0 +1,19 @@
+#pragma once
+// What `rcdem generate` writes: particles.vtu, facets.vtu and summary.json.
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
+
+#include "rcdem/io/scenario.hpp"
+#include "rcdem/specimens/specimen.hpp"
+
+namespace rcdem::io {
+
+// Counts, porosity, volumes and the packing's quality figures. Wall-clock `seconds` is added by
+// the caller, last, as the only field that differs between two runs of the same scenario.
+nlohmann::ordered_json specimen_summary(const Scenario& scenario, const Specimen& specimen);
+
+void write_particles_vtu(const std::filesystem::path& path, const Specimen& specimen, bool binary);
+void write_facets_vtu(const std::filesystem::path& path, const Specimen& specimen, bool binary);
+
+}  // namespace rcdem::io

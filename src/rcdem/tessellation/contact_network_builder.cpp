@@ -1,0 +1,57 @@
+#include "rcdem/tessellation/contact_network_builder.hpp"
+
+#include <span>
+
+#include "rcdem/contact/local_point_properties.hpp"
+#include "rcdem/tessellation/facet_area_split.hpp"
+
+namespace rcdem {
+
+ContactNetwork build_contact_network(const Particles& p, const CellComplex& cc,
+                                     const SpecimenGeometry& g, const ContactParameters& params,
+                                     NetworkReport* report) {
+  ContactNetwork net;
+  NetworkReport rep;
+  net.point_begin.push_back(0);
+  for (Index a = 0; a < cc.cell_count(); ++a) {
+    for (Index f = cc.face_begin[a]; f < cc.face_begin[a + 1]; ++f) {
+      const Index b = cc.face_neighbour[f];
+      if (b <= a) continue;  // a specimen face (b < 0), or the pair was taken from b's side
+      const Vec3& xa = p.position[a];
+      const Vec3& xb = p.position[b];
+      if (g.segment_crosses_notch(xa, xb)) {
+        ++rep.facets_cut_by_notch;
+        continue;
+      }
+      const Real d = (xb - xa).norm();
+      const std::span<const Vec3> raw(cc.vertices.data() + cc.vertex_begin[f],
+                                      static_cast<std::size_t>(cc.vertex_begin[f + 1] - cc.vertex_begin[f]));
+      const std::vector<Vec3> verts = merge_close_vertices(raw, 1e-9 * d);
+      const FacetSplit split = split_facet_area(verts);
+      if (!(split.area > 1e-14 * d * d)) {
+        ++rep.degenerate_facets;
+        continue;
+      }
+      net.particle_a.push_back(a);
+      net.particle_b.push_back(b);
+      net.distance0.push_back(d);
+      net.facet_area.push_back(split.area);
+      auto add_point = [&](const Vec3& x, Real area) {
+        const LocalPointProperties q = local_point_properties(params, area, d);
+        net.point_position0.push_back(x);
+        net.point_area.push_back(area);
+        net.kn.push_back(q.kn);
+        net.ks.push_back(q.ks);
+        net.fn_max.push_back(q.fn_max);
+        net.c_max.push_back(q.c_max);
+      };
+      add_point(split.centroid, split.centroid_area);
+      for (std::size_t v = 0; v < verts.size(); ++v) add_point(verts[v], split.vertex_area[v]);
+      net.point_begin.push_back(static_cast<Index>(net.point_area.size()));
+    }
+  }
+  if (report) *report = rep;
+  return net;
+}
+
+}  // namespace rcdem
