@@ -4,8 +4,7 @@
 
 namespace rcdem {
 
-Real DiameterDistribution::sample(Rng& rng) const {
-  const Real u = rng.uniform();
+Real DiameterDistribution::quantile(Real u) const {
   if (grading == Grading::Uniform || d_max <= d_min) return d_min + (d_max - d_min) * u;
   // Inverse of the CDF of n(d) ~ d^(q-4) on [d_min, d_max].
   const Real p = fuller_exponent - 3.0;

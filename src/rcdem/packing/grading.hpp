@@ -12,7 +12,8 @@ struct DiameterDistribution {
   Real d_min = 0.0, d_max = 0.0;
   Real fuller_exponent = 0.5;
 
-  Real sample(Rng& rng) const;
+  Real quantile(Real u) const;  // inverse CDF of the number distribution, u in [0, 1)
+  Real sample(Rng& rng) const { return quantile(rng.uniform()); }
   Real mean_volume() const;  // E[pi d^3 / 6], for size estimates and tests
 };
 
