@@ -1,7 +1,7 @@
 // rcdem command line: generate | print-schema (run, calibrate and study arrive with the solver).
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <CLI/CLI.hpp>
 #include <chrono>
 #include <filesystem>
 #include <iostream>
@@ -19,16 +19,27 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path default_output(const fs::path& scenario) {
-  return fs::path("results") / scenario.stem();
-}
+fs::path default_output(const fs::path& scenario) { return fs::path("results") / scenario.stem(); }
+
+void write_specimen(const rcdem::Scenario& scenario, const fs::path& out,
+                    std::chrono::steady_clock::time_point start);
 
 int generate(const fs::path& scenario_path, fs::path out, bool force) {
   const auto start = std::chrono::steady_clock::now();
   const rcdem::Scenario scenario = rcdem::load_scenario(scenario_path);
   if (out.empty()) out = default_output(scenario_path);
-  rcdem::io::prepare_output_directory(out, force);
+  const bool created = rcdem::io::prepare_output_directory(out, force);
+  try {
+    write_specimen(scenario, out, start);
+  } catch (...) {
+    rcdem::io::remove_if_created_and_empty(out, created);
+    throw;
+  }
+  return 0;
+}
 
+void write_specimen(const rcdem::Scenario& scenario, const fs::path& out,
+                    std::chrono::steady_clock::time_point start) {
   const rcdem::Specimen specimen = rcdem::build_specimen(scenario);
   rcdem::io::write_file_atomically(out / "scenario.toml", scenario.text);
   rcdem::io::write_particles_vtu(out / "particles.vtu", specimen, scenario.output.binary_vtu);
@@ -41,16 +52,16 @@ int generate(const fs::path& scenario_path, fs::path out, bool force) {
 
   if (!rcdem::Progress::quiet_default()) {
     const auto& p = summary["particles"];
-    fmt::print("{}: {} aggregate + {} mortar + {} steel particles, {} contacts ({:.2f} per "
-               "particle), {} local points ({:.2f} per contact), porosity {:.4f}, {:.1f} s\n"
-               "written to {}\n",
-               scenario_path.string(), p["aggregate"].get<long>(), p["mortar"].get<long>(),
-               p["steel"].get<long>(), summary["contacts"].get<long>(),
-               summary["contacts_per_particle"].get<double>(), summary["local_points"].get<long>(),
-               summary["local_points_per_contact"].get<double>(),
-               summary["porosity"].get<double>(), summary["seconds"].get<double>(), out.string());
+    fmt::print(
+        "{}: {} aggregate + {} mortar + {} steel particles, {} contacts ({:.2f} per "
+        "particle), {} local points ({:.2f} per contact), porosity {:.4f}, {:.1f} s\n"
+        "written to {}\n",
+        scenario.source.string(), p["aggregate"].get<long>(), p["mortar"].get<long>(),
+        p["steel"].get<long>(), summary["contacts"].get<long>(),
+        summary["contacts_per_particle"].get<double>(), summary["local_points"].get<long>(),
+        summary["local_points_per_contact"].get<double>(), summary["porosity"].get<double>(),
+        summary["seconds"].get<double>(), out.string());
   }
-  return 0;
 }
 
 }  // namespace

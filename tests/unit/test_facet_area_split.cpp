@@ -40,7 +40,7 @@ TEST(FacetAreaSplit, IrregularPolygonCentroidAndSum) {
 }
 
 TEST(FacetAreaSplit, MergesNearDuplicateVertices) {
-  const std::vector<Vec3> v = {{0, 0, 0}, {1, 0, 0}, {1 + 1e-12, 0, 0}, {1, 1, 0}, {0, 1, 0},
-                               {1e-13, 0, 0}};
+  const std::vector<Vec3> v = {{0, 0, 0}, {1, 0, 0}, {1 + 1e-12, 0, 0},
+                               {1, 1, 0}, {0, 1, 0}, {1e-13, 0, 0}};
   EXPECT_EQ(merge_close_vertices(v, 1e-9).size(), 4u);
 }

@@ -1,9 +1,8 @@
 // SPEC 2 asks for a homogeneous, isotropic point set after relaxation. Homogeneity: counts in
-// sub-cubes fluctuate far less than for random points. Isotropy: the area-weighted fabric tensor of the
-// contact normals, F = sum(A n n) / sum(A), is close to I/3.
-#include <gtest/gtest.h>
-
+// sub-cubes fluctuate far less than for random points. Isotropy: the area-weighted fabric tensor of
+// the contact normals, F = sum(A n n) / sum(A), is close to I/3.
 #include <fmt/format.h>
+#include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
 

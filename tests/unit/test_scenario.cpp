@@ -55,14 +55,13 @@ TEST(Scenario, MissingRequiredKey) {
 }
 
 TEST(Scenario, CrossKeyChecks) {
-  EXPECT_NE(error_of(test::small_box_text(1, "voronoi",
-                                          "[generation.aggregate]\nd_min = 0.013\n"))
+  EXPECT_NE(error_of(test::small_box_text(1, "voronoi", "[generation.aggregate]\nd_min = 0.013\n"))
                 .find("must not exceed"),
             std::string::npos);
-  EXPECT_NE(error_of(test::small_box_text(1, "voronoi",
-                                          "[generation.aggregate]\ncontent = 2500.0\n"))
-                .find("cannot fit"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of(test::small_box_text(1, "voronoi", "[generation.aggregate]\ncontent = 2500.0\n"))
+          .find("cannot fit"),
+      std::string::npos);
 }
 
 TEST(Schema, TemplateParsesBackWithEveryDefault) {

@@ -89,7 +89,9 @@ TEST(Specimen, LocalPointPropertiesFollowEquations3To6) {
   const ContactParameters& p = sc.contact;
   for (Index k = 0; k < c.contact_count(); k += 7) {
     const Real d = c.distance0[k];
-    EXPECT_NEAR(d, (s.particles.position[c.particle_b[k]] - s.particles.position[c.particle_a[k]]).norm(), 1e-15);
+    EXPECT_NEAR(
+        d, (s.particles.position[c.particle_b[k]] - s.particles.position[c.particle_a[k]]).norm(),
+        1e-15);
     for (Index m = c.point_begin[k]; m < c.point_begin[k + 1]; ++m) {
       const Real A = c.point_area[m];
       EXPECT_DOUBLE_EQ(c.kn[m], p.E_bar * A / d);
@@ -121,8 +123,7 @@ TEST(Specimen, PackingHonoursContentPorosityAndMinimumDistances) {
   const auto& g = sc.generation;
   // Aggregate content within one aggregate sphere of the target; porosity within one mortar sphere.
   const Real one_agg = kPi / 6.0 * std::pow(g.aggregate_d_max, 3) / V;
-  EXPECT_NEAR(s.packing.aggregate_volume / V, g.aggregate_content / g.aggregate_density,
-              one_agg);
+  EXPECT_NEAR(s.packing.aggregate_volume / V, g.aggregate_content / g.aggregate_density, one_agg);
   EXPECT_NEAR(s.packing.porosity, g.porosity, kPi / 6.0 * std::pow(g.mortar_d_max, 3) / V);
   EXPECT_GE(s.packing.min_distance_ratio, g.min_distance_factor);
   EXPECT_GE(s.packing.min_face_ratio, g.min_distance_factor * (1.0 - 1e-12));
@@ -179,7 +180,8 @@ relaxation_iterations = 60
   const Specimen s = build_specimen(sc);
   EXPECT_GT(s.network.facets_cut_by_notch, 5);
   const Real xc = 0.06;
-  for (Index i = 0; i < s.particles.size(); ++i) EXPECT_FALSE(s.geometry.in_notch(s.particles.position[i]));
+  for (Index i = 0; i < s.particles.size(); ++i)
+    EXPECT_FALSE(s.geometry.in_notch(s.particles.position[i]));
   for (Index k = 0; k < s.contacts.contact_count(); ++k) {
     const Vec3& a = s.particles.position[s.contacts.particle_a[k]];
     const Vec3& b = s.particles.position[s.contacts.particle_b[k]];

@@ -6,9 +6,10 @@
 
 namespace rcdem::io {
 
-void prepare_output_directory(const std::filesystem::path& dir, bool force) {
+bool prepare_output_directory(const std::filesystem::path& dir, bool force) {
   namespace fs = std::filesystem;
   std::error_code ec;
+  bool created = false;
   if (fs::exists(dir, ec)) {
     if (!fs::is_directory(dir, ec))
       fail("output path '{}' exists and is not a directory", dir.string());
@@ -18,9 +19,16 @@ void prepare_output_directory(const std::filesystem::path& dir, bool force) {
   } else {
     fs::create_directories(dir, ec);
     if (ec) fail("cannot create output directory '{}': {}", dir.string(), ec.message());
+    created = true;
   }
   if (::access(dir.c_str(), W_OK | X_OK) != 0)
     fail("output directory '{}' is not writable", dir.string());
+  return created;
+}
+
+void remove_if_created_and_empty(const std::filesystem::path& dir, bool created) noexcept {
+  std::error_code ec;
+  if (created && std::filesystem::is_empty(dir, ec)) std::filesystem::remove(dir, ec);
 }
 
 }  // namespace rcdem::io

@@ -1,13 +1,14 @@
 #include "rcdem/io/scenario.hpp"
 
 #include <fmt/format.h>
+#include <toml++/toml.h>
 
 #include <cmath>
 #include <fstream>
 #include <sstream>
-#include <toml++/toml.h>
 
 #include "rcdem/core/error.hpp"
+#include "rcdem/specimens/specimen_geometry.hpp"
 #include "rcdem/specimens/specimen_registry.hpp"
 
 namespace rcdem {
@@ -43,6 +44,8 @@ struct Reader {
       s << "a table";
     else if (node.is_array())
       s << "an array";
+    else if (auto f = node.value_exact<double>())
+      s << fmt::format("{}", *f);  // shortest round-trip form: 0.05, not 0.050000000000000003
     else
       node.visit([&](const auto& v) {
         if constexpr (toml::is_value<decltype(v)>) s << v;
@@ -119,12 +122,16 @@ struct Reader {
     for (const auto& [raw_key, node] : table) {
       const std::string name(raw_key.str());
       const std::string path = prefix.empty() ? name : prefix + "." + name;
+      const KeyDecl* decl = schema.find_key(path);
       if (node.is_table()) {
+        if (decl) bad_value(node, *decl, "a table");
         if (!schema.is_section(path)) unknown(node, path, prefix);
         read_table(*node.as_table(), path);
         continue;
       }
-      const KeyDecl* decl = schema.find_key(path);
+      if (schema.is_section(path))
+        fail("{}: '{}' is a section: expected a table [{}], got {}", where(node), path, path,
+             node.is_array() ? "an array" : describe_node(node));
       if (!decl) unknown(node, path, prefix);
       read_key(node, *decl);
     }
@@ -141,9 +148,12 @@ struct Reader {
   void fill_defaults() {
     for (const auto& decl : schema.keys()) {
       if (values.count(decl.path)) continue;
-      if (!decl.default_value)
-        fail("{}: missing required key '{}': {}; expected {}", file, decl.path, decl.doc,
+      if (!decl.default_value) {
+        std::string doc = decl.doc;
+        if (!doc.empty() && doc.back() == '.') doc.pop_back();
+        fail("{}: missing required key '{}' ({}): expected {}", file, decl.path, doc,
              Schema::describe_expected(decl));
+      }
       values[decl.path] = *decl.default_value;
     }
   }
@@ -163,31 +173,58 @@ struct Reader {
 void check_consistency(const Reader& r, const Scenario& s) {
   const auto& g = s.generation;
   if (g.aggregate_d_min > g.aggregate_d_max)
-    fail("{}: key 'generation.aggregate.d_min' ({} m) must not exceed "
-         "'generation.aggregate.d_max' ({} m)",
-         r.at("generation.aggregate.d_min"), g.aggregate_d_min, g.aggregate_d_max);
+    fail(
+        "{}: key 'generation.aggregate.d_min' ({} m) must not exceed "
+        "'generation.aggregate.d_max' ({} m)",
+        r.at("generation.aggregate.d_min"), g.aggregate_d_min, g.aggregate_d_max);
   if (g.mortar_d_min > g.mortar_d_max)
-    fail("{}: key 'generation.mortar.d_min' ({} m) must not exceed 'generation.mortar.d_max' ({} m)",
-         r.at("generation.mortar.d_min"), g.mortar_d_min, g.mortar_d_max);
+    fail(
+        "{}: key 'generation.mortar.d_min' ({} m) must not exceed 'generation.mortar.d_max' ({} m)",
+        r.at("generation.mortar.d_min"), g.mortar_d_min, g.mortar_d_max);
   const Real largest = std::max(g.aggregate_d_max, g.mortar_d_max);
   const Real smallest_side = s.specimen.size.minCoeff();
   if (smallest_side < 2.0 * largest)
-    fail("{}: key 'specimen.size': the smallest side ({} m) must be at least two of the largest "
-         "particle diameters ({} m)",
-         r.at("specimen.size"), smallest_side, 2.0 * largest);
+    fail(
+        "{}: key 'specimen.size': the smallest side ({} m) must be at least two of the largest "
+        "particle diameters ({} m)",
+        r.at("specimen.size"), smallest_side, 2.0 * largest);
   if (s.specimen.shape != "beam" && s.specimen.notch_depth > 0.0)
     fail("{}: key 'specimen.notch_depth': a notch needs specimen.shape = \"beam\"",
          r.at("specimen.notch_depth"));
-  if (s.specimen.notch_depth >= s.specimen.size.z() - 2.0 * largest)
-    fail("{}: key 'specimen.notch_depth' ({} m) must leave at least two particle diameters of the "
-         "depth ({} m)",
-         r.at("specimen.notch_depth"), s.specimen.notch_depth, s.specimen.size.z());
+  if (s.specimen.notch_depth > 0.0 && s.specimen.notch_depth >= s.specimen.size.z() - 2.0 * largest)
+    fail(
+        "{}: key 'specimen.notch_depth' ({} m) must leave at least two particle diameters of the "
+        "depth ({} m)",
+        r.at("specimen.notch_depth"), s.specimen.notch_depth, s.specimen.size.z());
+  const SpecimenGeometry geometry = specimen_geometry(s);
+  const Real volume = geometry.volume();
+  const Real smallest = kPi / 6.0 * std::pow(std::min(g.aggregate_d_min, g.mortar_d_min), 3);
+  const Real solid = (1.0 - g.porosity) * volume;
+  if (solid < smallest)
+    fail(
+        "{}: key 'generation.porosity' ({}) leaves a solid volume of {:.3g} m^3, less than one "
+        "particle: the specimen would hold no particle",
+        r.at("generation.porosity"), g.porosity, solid);
+  // The generator fills volumes to within one sphere, so a content is feasible only if it stays
+  // one largest aggregate below the solid volume (1 - porosity) V.
   const Real aggregate_fraction = g.aggregate_content / g.aggregate_density;
-  if (aggregate_fraction >= 1.0 - g.porosity)
-    fail("{}: key 'generation.aggregate.content': {} kg/m^3 at density {} kg/m^3 fills {:.3f} of "
-         "the volume, which cannot fit below the solid fraction 1 - porosity = {:.3f}",
-         r.at("generation.aggregate.content"), g.aggregate_content, g.aggregate_density,
-         aggregate_fraction, 1.0 - g.porosity);
+  const Real one_aggregate = kPi / 6.0 * std::pow(g.aggregate_d_max, 3) / volume;
+  if (aggregate_fraction > 0.0 && aggregate_fraction + one_aggregate >= 1.0 - g.porosity)
+    fail(
+        "{}: key 'generation.aggregate.content': {} kg/m^3 at density {} kg/m^3 fills {:.3f} of "
+        "the volume, which cannot fit below the solid fraction 1 - porosity = {:.3f}",
+        r.at("generation.aggregate.content"), g.aggregate_content, g.aggregate_density,
+        aggregate_fraction, 1.0 - g.porosity);
+  // Memory grows with the particle count (about 11 kB per particle with its contacts); a typo in
+  // a size should not exhaust the machine.
+  const Real mean_particle =
+      kPi / 6.0 * std::pow(0.5 * (std::min(g.aggregate_d_min, g.mortar_d_min) + g.mortar_d_max), 3);
+  const Real estimate = solid / mean_particle;
+  if (estimate > static_cast<Real>(g.max_particles))
+    fail(
+        "{}: key 'specimen.size': the specimen would hold about {:.3g} particles, more than "
+        "generation.max_particles = {}; raise that limit if this is intended",
+        r.at("specimen.size"), estimate, g.max_particles);
 }
 
 Scenario convert(Reader& r, const std::string& text) {
@@ -205,6 +242,7 @@ Scenario convert(Reader& r, const std::string& text) {
   g.porosity = r.real("generation.porosity");
   g.relaxation_iterations = static_cast<int>(r.integer("generation.relaxation_iterations"));
   g.min_distance_factor = r.real("generation.min_distance_factor");
+  g.max_particles = r.integer("generation.max_particles");
   g.aggregate_content = r.real("generation.aggregate.content");
   g.aggregate_density = r.real("generation.aggregate.density");
   g.aggregate_d_min = r.real("generation.aggregate.d_min");
@@ -216,7 +254,7 @@ Scenario convert(Reader& r, const std::string& text) {
   g.mortar_d_max = r.real("generation.mortar.d_max");
 
   s.tessellation = r.string("tessellation.kind") == "radical" ? TessellationKind::Radical
-                                                               : TessellationKind::Voronoi;
+                                                              : TessellationKind::Voronoi;
   auto& c = s.contact;
   c.E_bar = r.real("contact.E_bar");
   c.alpha = r.real("contact.alpha");

@@ -24,6 +24,7 @@ struct GenerationSettings {
   Real porosity = 0.10;
   int relaxation_iterations = 300;
   Real min_distance_factor = 0.5;
+  std::int64_t max_particles = 5'000'000;
   Real aggregate_content = 568.5;  // kg/m^3
   Real aggregate_density = 2700.0;
   Real aggregate_d_min = 0.008, aggregate_d_max = 0.012;
@@ -57,7 +58,7 @@ struct Scenario {
   TessellationKind tessellation = TessellationKind::Voronoi;
   ContactParameters contact;
   OutputSettings output;
-  std::string text;                    // the scenario as given, kept for the run directory
+  std::string text;                     // the scenario as given, kept for the run directory
   std::map<std::string, int> key_line;  // where each key was set, for later error messages
 };
 

@@ -21,6 +21,16 @@ KeyDecl real(std::string path, std::optional<double> def, Range range, std::stri
   return k;
 }
 
+KeyDecl typed(std::string path, KeyType type, Value def, Range range, std::string doc) {
+  KeyDecl k;
+  k.path = std::move(path);
+  k.type = type;
+  k.default_value = std::move(def);
+  k.range = range;
+  k.doc = std::move(doc);
+  return k;
+}
+
 KeyDecl positive(std::string path, std::optional<double> def, std::string unit, std::string doc) {
   return real(std::move(path), def, Range{0.0, kInf, true, false}, std::move(unit), std::move(doc));
 }
@@ -39,16 +49,16 @@ KeyDecl choice(std::string path, std::optional<std::string> def, std::vector<std
 Schema build() {
   Schema s;
   s.section("specimen", "The specimen's shape. The origin is at a corner; x along the length.");
-  s.key(choice("specimen.shape", std::nullopt, {"box", "beam"},
-               "Specimen builder: 'box' (uniaxial cube) or 'beam' (prism, optional central notch)."));
+  s.key(
+      choice("specimen.shape", std::nullopt, {"box", "beam"},
+             "Specimen builder: 'box' (uniaxial cube) or 'beam' (prism, optional central notch)."));
   {
-    KeyDecl k;
-    k.path = "specimen.size";
-    k.type = KeyType::RealArray;
+    KeyDecl k = typed("specimen.size", KeyType::RealArray, std::vector<double>{},
+                      Range{0.0, kInf, true, false},
+                      "Outer dimensions [x, y, z]; for a beam [length, width, depth], z vertical.");
+    k.default_value.reset();  // required
     k.array_size = 3;
-    k.range = Range{0.0, kInf, true, false};
     k.unit = "m";
-    k.doc = "Outer dimensions [x, y, z]; for a beam [length, width, depth], z vertical.";
     s.key(k);
   }
   s.key(real("specimen.notch_depth", 0.0, Range{0.0, kInf}, "m",
@@ -56,27 +66,17 @@ Schema build() {
   s.key(positive("specimen.notch_width", 0.003, "m", "Beam only: width of the central notch."));
 
   s.section("generation", "Particle generation (paper 2.3, SPEC 2).");
-  {
-    KeyDecl k;
-    k.path = "generation.seed";
-    k.type = KeyType::Integer;
-    k.default_value = std::int64_t{1};
-    k.range = Range{0.0, 9.0e15};
-    k.doc = "Random seed: the same seed gives the same packing.";
-    s.key(k);
-  }
+  s.key(typed("generation.seed", KeyType::Integer, std::int64_t{1}, Range{0.0, 9.0e15},
+              "Random seed: the same seed gives the same packing."));
   s.key(real("generation.porosity", 0.10, Range{0.0, 1.0, true, true}, "",
              "Target porosity n = 1 - sum(sphere volumes) / specimen volume; mortar is added until "
              "it is reached."));
-  {
-    KeyDecl k;
-    k.path = "generation.relaxation_iterations";
-    k.type = KeyType::Integer;
-    k.default_value = std::int64_t{300};
-    k.range = Range{0.0, 100000.0};
-    k.doc = "Overlap-reducing iterations that make the point set homogeneous and isotropic.";
-    s.key(k);
-  }
+  s.key(typed("generation.relaxation_iterations", KeyType::Integer, std::int64_t{300},
+              Range{0.0, 100000.0},
+              "Overlap-reducing iterations that make the point set homogeneous and isotropic."));
+  s.key(typed(
+      "generation.max_particles", KeyType::Integer, std::int64_t{5000000}, Range{1.0, 1.0e9},
+      "Refuse specimens estimated to hold more particles than this (a guard against typos)."));
   s.key(real("generation.min_distance_factor", 0.5, Range{0.0, 1.0, true, false}, "",
              "No centre closer than this times the smaller radius to another centre, or than this "
              "times its own radius to a face."));
@@ -91,8 +91,9 @@ Schema build() {
   s.key(choice("generation.aggregate.grading", std::string("uniform"), {"uniform", "fuller"},
                "Diameter distribution: 'uniform' in diameter, or 'fuller' (mass passing "
                "proportional to d^exponent)."));
-  s.key(positive("generation.aggregate.fuller_exponent", 0.5, "",
-                 "Exponent of the Fuller grading curve (used with grading = 'fuller')."));
+  s.key(real("generation.aggregate.fuller_exponent", 0.5, Range{0.05, 2.0}, "",
+             "Exponent q of the Fuller grading curve P(d) = (d / d_max)^q, used with grading = "
+             "'fuller' (0.5 is Fuller-Thompson; practical curves use 0.3 to 0.7)."));
 
   s.section("generation.mortar", "Mortar spheres, added after the aggregate until the porosity.");
   s.key(positive("generation.mortar.d_min", 0.008, "m", "Smallest mortar diameter."));
@@ -116,14 +117,8 @@ Schema build() {
   s.section("output", "What is written and how.");
   s.key(choice("output.vtu_encoding", std::string("binary"), {"binary", "ascii"},
                "VTU data encoding: 'binary' (base64, compact) or 'ascii' (readable)."));
-  {
-    KeyDecl k;
-    k.path = "output.write_facets";
-    k.type = KeyType::Boolean;
-    k.default_value = true;
-    k.doc = "Write facets.vtu (the contact facets as polygons).";
-    s.key(k);
-  }
+  s.key(typed("output.write_facets", KeyType::Boolean, true, Range{},
+              "Write facets.vtu (the contact facets as polygons)."));
   return s;
 }
 

@@ -81,16 +81,24 @@ std::string describe_range(const Range& r) {
 std::string Schema::describe_expected(const KeyDecl& decl) {
   std::string what;
   switch (decl.type) {
-    case KeyType::Real: what = "a number"; break;
-    case KeyType::Integer: what = "an integer"; break;
-    case KeyType::Boolean: what = "true or false"; break;
+    case KeyType::Real:
+      what = "a number";
+      break;
+    case KeyType::Integer:
+      what = "an integer";
+      break;
+    case KeyType::Boolean:
+      what = "true or false";
+      break;
     case KeyType::String: {
       what = "one of";
       for (std::size_t i = 0; i < decl.choices.size(); ++i)
         what += fmt::format("{}\"{}\"", i ? ", " : " ", decl.choices[i]);
       return what;
     }
-    case KeyType::RealArray: what = fmt::format("an array of {} numbers", decl.array_size); break;
+    case KeyType::RealArray:
+      what = fmt::format("an array of {} numbers", decl.array_size);
+      break;
   }
   const std::string range = describe_range(decl.range);
   if (!range.empty()) what += (decl.type == KeyType::RealArray ? ", each " : " ") + range;
@@ -100,7 +108,8 @@ std::string Schema::describe_expected(const KeyDecl& decl) {
 
 void Schema::print_template(std::ostream& out) const {
   out << "# rcdem scenario template: every key with its default, unit and admissible range.\n"
-         "# SI units throughout (m, kg, s, N, Pa, J/m^2). Keys marked 'required' have no default.\n";
+         "# SI units throughout (m, kg, s, N, Pa, J/m^2). Keys marked 'required' have no "
+         "default.\n";
   std::vector<std::string> printed_sections;
   for (const auto& s : sections_) {
     out << "\n# " << s.doc << "\n[" << s.path << "]\n";

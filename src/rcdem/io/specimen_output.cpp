@@ -21,10 +21,9 @@ nlohmann::ordered_json specimen_summary(const Scenario& scenario, const Specimen
   j["local_points"] = c.point_count();
   // The paper counts contacts per particle as contacts / particles (153,165 / 23,855 = 6.4).
   j["contacts_per_particle"] = n > 0 ? static_cast<Real>(c.contact_count()) / n : 0.0;
-  j["local_points_per_contact"] =
-      c.contact_count() > 0
-          ? static_cast<Real>(c.point_count()) / static_cast<Real>(c.contact_count())
-          : 0.0;
+  j["local_points_per_contact"] = c.contact_count() > 0 ? static_cast<Real>(c.point_count()) /
+                                                              static_cast<Real>(c.contact_count())
+                                                        : 0.0;
   j["porosity"] = s.packing.porosity;
   j["aggregate_mass_per_m3"] =
       s.packing.aggregate_volume * scenario.generation.aggregate_density / s.geometry.volume();

@@ -1,7 +1,6 @@
 #pragma once
 // What `rcdem generate` writes: particles.vtu, facets.vtu and summary.json.
 #include <filesystem>
-
 #include <nlohmann/json.hpp>
 
 #include "rcdem/io/scenario.hpp"

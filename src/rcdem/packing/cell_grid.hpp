@@ -26,7 +26,8 @@ class CellGrid {
     for (std::size_t c = 0; c < cells; ++c) start_[c + 1] += start_[c];
     items_.resize(points.size());
     std::vector<Index> fill(start_.begin(), start_.end() - 1);
-    for (std::size_t i = 0; i < points.size(); ++i) items_[fill[cell_of_[i]]++] = static_cast<Index>(i);
+    for (std::size_t i = 0; i < points.size(); ++i)
+      items_[fill[cell_of_[i]]++] = static_cast<Index>(i);
   }
 
   // Calls f(j) for every point in the 27 cells around p.

@@ -23,11 +23,15 @@ Real sphere_volume(Real r) { return 4.0 / 3.0 * kPi * r * r * r; }
 // small cube). Past the N stratified draws, or if they overshoot, the sum is completed or trimmed
 // so that the last sphere kept brings it closest to the target.
 std::vector<Real> draw_radii(const DiameterDistribution& dist, Real target, Rng& rng) {
-  const auto expected = static_cast<std::size_t>(std::llround(target / dist.mean_volume()));
+  const Real mean = dist.mean_volume();
+  if (!(mean > 0.0) || !std::isfinite(mean))
+    fail("the diameter distribution in [{}, {}] m has no finite mean volume", dist.d_min,
+         dist.d_max);
+  const auto expected = static_cast<std::size_t>(std::llround(target / mean));
   std::vector<Real> radii(expected);
   for (std::size_t k = 0; k < expected; ++k)
-    radii[k] = 0.5 * dist.quantile((static_cast<Real>(k) + rng.uniform()) /
-                                   static_cast<Real>(expected));
+    radii[k] =
+        0.5 * dist.quantile((static_cast<Real>(k) + rng.uniform()) / static_cast<Real>(expected));
   for (std::size_t k = expected; k > 1; --k) {  // Fisher-Yates with our own generator
     const auto j = static_cast<std::size_t>(rng.uniform() * static_cast<Real>(k));
     std::swap(radii[k - 1], radii[j]);
@@ -111,9 +115,10 @@ Particles generate_packing(const GenerationSettings& s, const SpecimenGeometry& 
   for (Real r : agg_radii) agg_volume += sphere_volume(r);
   const Real solid_target = (1.0 - s.porosity) * volume;
   if (agg_volume >= solid_target)
-    fail("the aggregate alone ({:.4g} m^3) exceeds the solid volume allowed by porosity {} "
-         "({:.4g} m^3)",
-         agg_volume, s.porosity, solid_target);
+    fail(
+        "the aggregate alone ({:.4g} m^3) exceeds the solid volume allowed by porosity {} "
+        "({:.4g} m^3)",
+        agg_volume, s.porosity, solid_target);
   std::vector<Real> mortar_radii = draw_radii(mortar, solid_target - agg_volume, rng);
 
   Particles particles;

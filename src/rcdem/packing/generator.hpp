@@ -8,9 +8,9 @@
 namespace rcdem {
 
 struct PackingReport {
-  Real aggregate_volume = 0.0;  // sum of aggregate sphere volumes
-  Real sphere_volume = 0.0;     // sum of all sphere volumes
-  Real porosity = 0.0;          // 1 - sphere_volume / specimen volume
+  Real aggregate_volume = 0.0;    // sum of aggregate sphere volumes
+  Real sphere_volume = 0.0;       // sum of all sphere volumes
+  Real porosity = 0.0;            // 1 - sphere_volume / specimen volume
   Real min_distance_ratio = 0.0;  // min over pairs of |x_i - x_j| / min(r_i, r_j)
   Real min_face_ratio = 0.0;      // min over particles of distance to the boundary / r_i
 };

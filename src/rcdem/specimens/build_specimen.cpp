@@ -1,5 +1,4 @@
 #include "rcdem/specimens/specimen.hpp"
-
 #include "rcdem/specimens/specimen_registry.hpp"
 #include "rcdem/tessellation/cell_complex.hpp"
 

@@ -10,7 +10,7 @@ Real SpecimenGeometry::distance_to_boundary(const Vec3& p) const {
     const Real half = 0.5 * notch.width;
     const Real top = lo.z() + notch.depth;
     const Real dx = std::abs(p.x() - notch.x_center) - half;  // > 0 outside the slot's x-band
-    const Real dz = p.z() - top;                             // > 0 above the slot
+    const Real dz = p.z() - top;                              // > 0 above the slot
     Real to_slot;
     if (dz <= 0.0)
       to_slot = dx;

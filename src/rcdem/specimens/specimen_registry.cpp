@@ -41,9 +41,14 @@ const SpecimenBuilder& find_specimen_builder(const std::string& name) {
 
 void validate_specimen(const Scenario& s) {
   const SpecimenGeometry g = find_specimen_builder(s.specimen.shape).geometry(s);
-  if (g.notch.present() && g.notch.width >= 0.5 * g.size().x())
-    fail("{}: key 'specimen.notch_width' ({} m) must be less than half the beam length",
-         s.source.string(), g.notch.width);
+  if (g.notch.present() && g.notch.width >= 0.5 * g.size().x()) {
+    const auto it = s.key_line.find("specimen.notch_width");
+    const std::string at = it == s.key_line.end()
+                               ? s.source.string() + " (default value)"
+                               : fmt::format("{}:{}", s.source.string(), it->second);
+    fail("{}: key 'specimen.notch_width' ({} m) must be less than half the beam length", at,
+         g.notch.width);
+  }
 }
 
 SpecimenGeometry specimen_geometry(const Scenario& s) {

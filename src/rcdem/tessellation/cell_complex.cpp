@@ -1,8 +1,7 @@
 #include "rcdem/tessellation/cell_complex.hpp"
 
-#include <voro++/voro++.hh>
-
 #include <cmath>
+#include <voro++/voro++.hh>
 
 #include "rcdem/core/error.hpp"
 
@@ -86,7 +85,8 @@ CellComplex tessellate(const Particles& p, const SpecimenGeometry& g, Tessellati
       const int order = c.face_vertices[k++];
       for (int v = 0; v < order; ++v) {
         const int vi = c.face_vertices[k++];
-        cc.vertices.emplace_back(c.vertices[3 * vi], c.vertices[3 * vi + 1], c.vertices[3 * vi + 2]);
+        cc.vertices.emplace_back(c.vertices[3 * vi], c.vertices[3 * vi + 1],
+                                 c.vertices[3 * vi + 2]);
       }
       cc.face_neighbour.push_back(c.neighbours[f]);
       cc.face_area.push_back(c.areas[f]);

@@ -11,12 +11,13 @@
 namespace rcdem {
 
 struct CellComplex {
-  std::vector<Real> volume;          // per cell
-  std::vector<Index> face_begin;     // per cell, CSR into the face arrays (size cells + 1)
-  std::vector<Index> face_neighbour; // per face: the particle across it, or < 0 for a specimen face
-  std::vector<Real> face_area;       // per face, as voro++ computes it
-  std::vector<Index> vertex_begin;   // per face, CSR into vertices (size faces + 1)
-  std::vector<Vec3> vertices;        // global coordinates, in polygon order
+  std::vector<Real> volume;       // per cell
+  std::vector<Index> face_begin;  // per cell, CSR into the face arrays (size cells + 1)
+  std::vector<Index>
+      face_neighbour;               // per face: the particle across it, or < 0 for a specimen face
+  std::vector<Real> face_area;      // per face, as voro++ computes it
+  std::vector<Index> vertex_begin;  // per face, CSR into vertices (size faces + 1)
+  std::vector<Vec3> vertices;       // global coordinates, in polygon order
 
   Index cell_count() const { return static_cast<Index>(volume.size()); }
 };

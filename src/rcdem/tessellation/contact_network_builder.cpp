@@ -24,8 +24,9 @@ ContactNetwork build_contact_network(const Particles& p, const CellComplex& cc,
         continue;
       }
       const Real d = (xb - xa).norm();
-      const std::span<const Vec3> raw(cc.vertices.data() + cc.vertex_begin[f],
-                                      static_cast<std::size_t>(cc.vertex_begin[f + 1] - cc.vertex_begin[f]));
+      const std::span<const Vec3> raw(
+          cc.vertices.data() + cc.vertex_begin[f],
+          static_cast<std::size_t>(cc.vertex_begin[f + 1] - cc.vertex_begin[f]));
       const std::vector<Vec3> verts = merge_close_vertices(raw, 1e-9 * d);
       const FacetSplit split = split_facet_area(verts);
       if (!(split.area > 1e-14 * d * d)) {
