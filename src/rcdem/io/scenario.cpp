@@ -93,7 +93,8 @@ struct Reader {
       case KeyType::String: {
         const auto v = node.value_exact<std::string>();
         if (!v) bad_value(node, decl, describe_node(node));
-        if (std::find(decl.choices.begin(), decl.choices.end(), *v) == decl.choices.end())
+        if (!decl.choices.empty() &&
+            std::find(decl.choices.begin(), decl.choices.end(), *v) == decl.choices.end())
           bad_value(node, decl, describe_node(node));
         value = *v;
         break;
@@ -101,7 +102,8 @@ struct Reader {
       case KeyType::RealArray: {
         const auto* array = node.as_array();
         if (!array) bad_value(node, decl, describe_node(node));
-        if (static_cast<int>(array->size()) != decl.array_size)
+        if (static_cast<int>(array->size()) != decl.array_size &&
+            !(array->empty() && decl.default_value))
           bad_value(node, decl, fmt::format("an array of {} elements", array->size()));
         std::vector<double> v;
         for (const auto& element : *array) {
@@ -126,6 +128,11 @@ struct Reader {
       if (node.is_table()) {
         if (decl) bad_value(node, *decl, "a table");
         if (!schema.is_section(path)) unknown(node, path, prefix);
+        for (const auto& sec : schema.sections())
+          if (sec.path.find('*') != std::string::npos && io::path_matches(sec.path, path)) {
+            instances[sec.path].push_back(path);
+            lines[path] = static_cast<int>(node.source().begin.line);
+          }
         read_table(*node.as_table(), path);
         continue;
       }
@@ -145,8 +152,25 @@ struct Reader {
          section.empty() ? "top level" : section, known);
   }
 
+  // Names given to '*' sections, e.g. "plates.top" for the pattern "plates.*".
+  std::map<std::string, std::vector<std::string>> instances;
+
   void fill_defaults() {
     for (const auto& decl : schema.keys()) {
+      const auto star = decl.path.find('*');
+      if (star != std::string::npos) {
+        // Keys of a named section get their defaults, or are required, in each instance given.
+        const std::string pattern = decl.path.substr(0, decl.path.rfind('.'));
+        for (const auto& inst : instances[pattern]) {
+          const std::string path = inst + decl.path.substr(decl.path.rfind('.'));
+          if (values.count(path)) continue;
+          if (!decl.default_value)
+            fail("{}: missing required key '{}' ({}): expected {}", file, path, decl.doc,
+                 Schema::describe_expected(decl));
+          values[path] = *decl.default_value;
+        }
+        continue;
+      }
       if (values.count(decl.path)) continue;
       if (!decl.default_value) {
         std::string doc = decl.doc;
@@ -264,6 +288,41 @@ Scenario convert(Reader& r, const std::string& text) {
   c.G_fn = r.real("contact.G_fn");
   c.G_fs = r.real("contact.G_fs");
 
+  s.law = r.string("contact.law") == "EL" ? ConcreteLaw::Elastic : ConcreteLaw::BilinearSoftening;
+  s.solver.density = r.real("material.density");
+  s.solver.dt_safety = r.real("solver.dt_safety");
+  s.solver.time_step = r.real("solver.time_step");
+  s.solver.damping = r.real("solver.damping");
+  s.solver.mass_scaling = r.real("solver.mass_scaling");
+  for (const auto& inst : r.instances["plates.*"]) {
+    PlateSettings p;
+    p.name = inst.substr(inst.find('.') + 1);
+    const std::string face = r.string(inst + ".face");
+    p.axis = face[0] - 'x';
+    p.side = face[1] == '-' ? -1 : 1;
+    p.extent = std::get<std::vector<double>>(r.values.at(inst + ".extent"));
+    if (!p.extent.empty() && (p.extent[0] >= p.extent[1] || p.extent[2] >= p.extent[3]))
+      fail("{}: key '{}.extent': expected [u_min, u_max, v_min, v_max] with u_min < u_max and "
+           "v_min < v_max",
+           r.at(inst + ".extent"), inst);
+    p.velocity = r.real(inst + ".velocity");
+    p.ramp_time = r.real(inst + ".ramp_time");
+    p.glued = r.boolean(inst + ".glued");
+    p.friction = r.real(inst + ".friction");
+    s.plates.push_back(p);
+  }
+  s.control_plate = r.string("loading.control_plate");
+  if (!s.control_plate.empty() &&
+      std::none_of(s.plates.begin(), s.plates.end(),
+                   [&](const PlateSettings& p) { return p.name == s.control_plate; }))
+    fail("{}: key 'loading.control_plate': no plate named '{}' (add a [plates.{}] section)",
+         r.at("loading.control_plate"), s.control_plate, s.control_plate);
+  s.stop.displacement = r.real("stop.displacement");
+  s.stop.load_drop = r.real("stop.load_drop");
+  s.stop.time = r.real("stop.time");
+  s.stop.steps = r.integer("stop.steps");
+  s.output.history_rows = r.integer("output.history_rows");
+  s.output.snapshots = r.integer("output.snapshots");
   s.output.binary_vtu = r.string("output.vtu_encoding") == "binary";
   s.output.write_facets = r.boolean("output.write_facets");
   s.key_line = r.lines;

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "rcdem/core/types.hpp"
 #include "rcdem/io/schema.hpp"
@@ -46,9 +47,40 @@ struct ContactParameters {
   Real G_fs = 2380.785;
 };
 
+enum class ConcreteLaw { BilinearSoftening, Elastic };
+
+struct SolverSettings {
+  Real density = 2400.0;  // kg/m^3 (material.density)
+  Real dt_safety = 0.3;
+  Real time_step = 0.0;  // 0 = automatic
+  Real damping = 0.7;
+  Real mass_scaling = 1.0;
+};
+
+struct PlateSettings {
+  std::string name;
+  int axis = 2;     // 0, 1, 2 for x, y, z
+  int side = -1;    // -1: the face at the low end of the axis, +1: the high end
+  std::vector<Real> extent;  // [u_min, u_max, v_min, v_max] or empty for the whole face
+  Real velocity = 0.0;
+  Real ramp_time = 0.0;
+  bool glued = false;
+  Real friction = 0.0;
+};
+
+struct StopSettings {
+  Real displacement = 0.0;
+  Real load_drop = 0.0;
+  Real time = 0.0;
+  std::int64_t steps = 0;
+  bool any() const { return displacement > 0 || load_drop > 0 || time > 0 || steps > 0; }
+};
+
 struct OutputSettings {
   bool binary_vtu = true;
   bool write_facets = true;
+  std::int64_t history_rows = 2000;
+  std::int64_t snapshots = 10;
 };
 
 struct Scenario {
@@ -57,6 +89,11 @@ struct Scenario {
   GenerationSettings generation;
   TessellationKind tessellation = TessellationKind::Voronoi;
   ContactParameters contact;
+  ConcreteLaw law = ConcreteLaw::BilinearSoftening;
+  SolverSettings solver;
+  std::vector<PlateSettings> plates;  // in the order given
+  std::string control_plate;
+  StopSettings stop;
   OutputSettings output;
   std::string text;                     // the scenario as given, kept for the run directory
   std::map<std::string, int> key_line;  // where each key was set, for later error messages

@@ -17,30 +17,45 @@ Schema& Schema::key(KeyDecl decl) {
   return *this;
 }
 
+bool path_matches(const std::string& pattern, const std::string& path) {
+  // A '*' segment in a declared path stands for any one name ("plates.*.face").
+  std::size_t i = 0, j = 0;
+  while (i < pattern.size() && j < path.size()) {
+    if (pattern[i] == '*') {
+      ++i;
+      while (j < path.size() && path[j] != '.') ++j;
+      continue;
+    }
+    if (pattern[i] != path[j]) return false;
+    ++i;
+    ++j;
+  }
+  return i == pattern.size() && j == path.size();
+}
+
 const KeyDecl* Schema::find_key(const std::string& path) const {
   for (const auto& k : keys_)
-    if (k.path == path) return &k;
+    if (path_matches(k.path, path)) return &k;
   return nullptr;
 }
 
 bool Schema::is_section(const std::string& path) const {
   return std::any_of(sections_.begin(), sections_.end(),
-                     [&](const SectionDecl& s) { return s.path == path; });
+                     [&](const SectionDecl& s) { return path_matches(s.path, path); });
 }
 
 std::vector<std::string> Schema::keys_in_section(const std::string& section) const {
   std::vector<std::string> names;
-  const std::string prefix = section.empty() ? "" : section + ".";
-  for (const auto& k : keys_) {
-    if (k.path.rfind(prefix, 0) != 0) continue;
-    const std::string rest = k.path.substr(prefix.size());
-    if (rest.find('.') == std::string::npos) names.push_back(rest);
-  }
-  for (const auto& s : sections_) {
-    if (s.path.rfind(prefix, 0) != 0 || s.path == section) continue;
-    const std::string rest = s.path.substr(prefix.size());
-    if (rest.find('.') == std::string::npos) names.push_back("[" + s.path + "]");
-  }
+  const auto child = [&](const std::string& path) -> std::optional<std::string> {
+    const auto dot = path.rfind('.');
+    const std::string parent = dot == std::string::npos ? "" : path.substr(0, dot);
+    if (!(parent == section || path_matches(parent, section))) return std::nullopt;
+    return path.substr(dot == std::string::npos ? 0 : dot + 1);
+  };
+  for (const auto& k : keys_)
+    if (auto n = child(k.path)) names.push_back(*n);
+  for (const auto& s : sections_)
+    if (auto n = child(s.path); n && s.path != section) names.push_back("[" + s.path + "]");
   return names;
 }
 
@@ -91,6 +106,7 @@ std::string Schema::describe_expected(const KeyDecl& decl) {
       what = "true or false";
       break;
     case KeyType::String: {
+      if (decl.choices.empty()) return "a string";
       what = "one of";
       for (std::size_t i = 0; i < decl.choices.size(); ++i)
         what += fmt::format("{}\"{}\"", i ? ", " : " ", decl.choices[i]);
@@ -112,14 +128,22 @@ void Schema::print_template(std::ostream& out) const {
          "default.\n";
   std::vector<std::string> printed_sections;
   for (const auto& s : sections_) {
-    out << "\n# " << s.doc << "\n[" << s.path << "]\n";
+    // A named section ("plates.*") is shown commented out, as an example with the name "NAME":
+    // the template stays a valid scenario.
+    const bool named = s.path.find('*') != std::string::npos;
+    const std::string lead = named ? "# " : "";
+    std::string header = s.path;
+    if (named) header.replace(header.find('*'), 1, "NAME");
+    out << "\n# " << s.doc << "\n" << lead << "[" << header << "]";
+    if (named) out << "   # one such section per item; NAME is yours to choose";
+    out << "\n";
     for (const auto& k : keys_) {
       const auto dot = k.path.rfind('.');
       if (k.path.substr(0, dot) != s.path) continue;
       const std::string name = k.path.substr(dot + 1);
       out << "# " << k.doc << "\n# expected: " << describe_expected(k) << "\n";
       if (k.default_value)
-        out << name << " = " << format_value(*k.default_value) << "\n";
+        out << lead << name << " = " << format_value(*k.default_value) << "\n";
       else
         out << "# " << name << " = ...   # required\n";
     }

@@ -64,6 +64,9 @@ class Schema {
 
 std::string format_value(const Value& value);
 
+// Whether a declared path (where a '*' segment matches any one name) matches a concrete path.
+bool path_matches(const std::string& pattern, const std::string& path);
+
 // The schema of rcdem's scenario files (declared in scenario_schema.cpp).
 const Schema& scenario_schema();
 

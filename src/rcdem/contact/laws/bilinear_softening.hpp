@@ -1,0 +1,97 @@
+#pragma once
+// Bilinear softening law BL (paper §2.4, SPEC 5) at one local contact point.
+//
+// Damage in each direction comes from the historical maximum of that direction's accumulated
+// displacement (S3) and softens linearly, so a point opened monotonically follows the triangle
+// (0, 0) -> (u_n0, F_n,max) -> (u_nu, 0), whose area is
+//   0.5 F_n,max u_nu = 0.5 (sigma_n,t A_c)(2 G_f,n / sigma_n,t) = G_f,n A_c
+// exactly; likewise G_f,s A_c in shear at fn = 0. Inside the envelope (S5) the point is elastic
+// with kn, ks, so unloading keeps slope kn and reloading meets the envelope where it left it.
+#include <algorithm>
+
+#include "rcdem/contact/laws/local_point_state.hpp"
+
+namespace rcdem {
+
+// Damage in one direction (S3). A brittle direction (u_ult <= u_0) breaks at once past u_0.
+// Written with negated comparisons so that a degenerate limit (NaN from a zero strength) yields
+// full damage rather than a NaN that would spread through the forces.
+inline Real softening_damage(Real u_max, Real u_0, Real u_ult) {
+  if (!(u_max > u_0)) return 0;
+  if (!(u_ult > u_0)) return 1;
+  return std::min<Real>(1, (u_max - u_0) / (u_ult - u_0));
+}
+
+struct BilinearSoftening {
+  Real sigma_nt = 0;  // contact tensile strength sigma_n,t [Pa], (5)
+  Real tau = 0;       // contact cohesion tau [Pa], (6)
+  Real G_fn = 0;      // tensile fracture energy [J/m^2]
+  Real G_fs = 0;      // shear fracture energy [J/m^2]
+  Real mu_c = 0;      // friction coefficient, (S5)
+
+  // Ultimate displacements of the softening triangles (S2); independent of the point's area.
+  Real u_nu() const { return 2 * G_fn / sigma_nt; }
+  Real u_su() const { return 2 * G_fs / tau; }
+
+  // Advances the point by the relative displacement increments (SPEC 4): dun along n (opening
+  // positive) and dus in the current contact plane. The caller has already rotated s.fs and s.us
+  // into that plane. Requires c.kn > 0 and c.ks > 0.
+  LawResult update(const LocalPointConstants& c, LocalPointState& s, Real dun,
+                   const Vec3& dus) const {
+    const Real fn_old = s.fn;
+    const Vec3 fs_old = s.fs;
+    s.un += dun;
+    s.us += dus;
+    // (1)-(2) in tension-positive form: fs resists the slip of B relative to A.
+    const Real fn_trial = fn_old + c.kn * dun;
+    const Vec3 fs_trial = fs_old - c.ks * dus;
+
+    s.un_max = std::max(s.un_max, s.un);
+    s.us_max = std::max(s.us_max, s.us.norm());
+    const Real d_n = softening_damage(s.un_max, c.fn_max / c.kn, u_nu());  // (S3)
+    const Real d_s = softening_damage(s.us_max, c.c_max / c.ks, u_su());   // (S3)
+    const Real d = std::max(s.damage, std::min<Real>(1, d_n + d_s));       // (S4)
+
+    LawResult r;
+    r.damage_grew = d > s.damage;
+    s.damage = d;
+
+    // (S5): tension capped, compression unlimited; the shear cap uses the new normal force so
+    // that friction follows the compression actually carried at the end of the step.
+    const Real fn_cap = (1 - d) * c.fn_max;
+    const bool normal_capped = fn_trial > fn_cap;
+    s.fn = normal_capped ? fn_cap : fn_trial;
+    const Real friction = mu_c * std::max<Real>(0, -s.fn);
+    const Real fs_cap = (1 - d) * c.c_max + friction;
+    const Real fs_trial_norm = fs_trial.norm();
+    const bool shear_capped = fs_trial_norm > fs_cap;
+    s.fs = shear_capped ? Vec3((fs_cap / fs_trial_norm) * fs_trial) : fs_trial;
+
+    // Dissipation = work - dE, with E = fn^2/2kn + |fs|^2/2ks and the work of the relative
+    // displacement fn dun - fs . dus (fs resists dus). Since dun = (fn_trial - fn_old)/kn, this is
+    // f_eff (fn_trial - fn_new)/kn, with f_eff the mean force over the inelastic part of the step
+    // (likewise in shear); an elastic step dissipates exactly zero. f_eff: the trapezoid
+    // (fn_old + fn_new)/2 while the force falls along the softening line, where the force is
+    // linear in the displacement and the trapezoid is exact; fn_new where the step first rises
+    // elastically to the cap (first yield, or reopening from compression), where the trapezoid
+    // would book the elastic rise as inelastic and could go negative. So dissipation is >= 0 for
+    // any step and converges to the exact value; per step it equals the trapezoidal work - dE
+    // only on the softening line.
+    if (normal_capped) {
+      const Real f_eff = 0.5 * (std::max(fn_old, s.fn) + s.fn);
+      r.dissipated += f_eff * (fn_trial - s.fn) / c.kn;
+    }
+    if (shear_capped) {
+      const Vec3 f_eff = fs_old.norm() > s.fs.norm() ? Vec3(0.5 * (fs_old + s.fs)) : s.fs;
+      // max(0, .): only a step reversing the slip by more than the elastic range, impossible at a
+      // stable time step, could make the trapezoid negative here.
+      const Real dissipated_shear = std::max<Real>(0, f_eff.dot(fs_trial - s.fs) / c.ks);
+      r.dissipated += dissipated_shear;
+      // Split by the make-up of the cap the force ended on: friction's share of it.
+      if (fs_cap > 0) r.dissipated_friction = dissipated_shear * (friction / fs_cap);
+    }
+    return r;
+  }
+};
+
+}  // namespace rcdem

@@ -1,0 +1,25 @@
+#pragma once
+// EL law (SPEC 5, used for the steel-concrete interface): (1)-(2) with no strength limit and no
+// damage. Displacements and their maxima are still accumulated so that output reads the same for
+// either law.
+#include <algorithm>
+
+#include "rcdem/contact/laws/local_point_state.hpp"
+
+namespace rcdem {
+
+struct Elastic {
+  // Same contract as BilinearSoftening::update; never dissipates.
+  LawResult update(const LocalPointConstants& c, LocalPointState& s, Real dun,
+                   const Vec3& dus) const {
+    s.un += dun;
+    s.us += dus;
+    s.un_max = std::max(s.un_max, s.un);
+    s.us_max = std::max(s.us_max, s.us.norm());
+    s.fn += c.kn * dun;  // (1), tension positive
+    s.fs -= c.ks * dus;  // (2), resists B's slip relative to A
+    return {};
+  }
+};
+
+}  // namespace rcdem
