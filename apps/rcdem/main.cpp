@@ -13,6 +13,7 @@
 #include "rcdem/io/scenario.hpp"
 #include "rcdem/io/schema.hpp"
 #include "rcdem/io/specimen_output.hpp"
+#include "rcdem/solver/run.hpp"
 #include "rcdem/specimens/specimen.hpp"
 
 namespace fs = std::filesystem;
@@ -64,6 +65,21 @@ void write_specimen(const rcdem::Scenario& scenario, const fs::path& out,
   }
 }
 
+int run(const fs::path& scenario_path, fs::path out, bool force) {
+  const rcdem::Scenario scenario = rcdem::load_scenario(scenario_path);
+  rcdem::validate_run(scenario);
+  if (out.empty()) out = default_output(scenario_path);
+  const bool created = rcdem::io::prepare_output_directory(out, force);
+  try {
+    rcdem::io::write_file_atomically(out / "scenario.toml", scenario.text);
+    rcdem::run_scenario(scenario, out);
+  } catch (...) {
+    rcdem::io::remove_if_created_and_empty(out, created);
+    throw;
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -80,6 +96,11 @@ int main(int argc, char** argv) {
   gen->add_option("-o,--output", out, "Output directory (default results/<scenario name>)");
   gen->add_flag("--force", force, "Overwrite the results in a non-empty output directory");
 
+  auto* runc = app.add_subcommand("run", "Generate the specimen and run the loading test");
+  runc->add_option("scenario", scenario, "Scenario file (TOML)")->required();
+  runc->add_option("-o,--output", out, "Output directory (default results/<scenario name>)");
+  runc->add_flag("--force", force, "Overwrite the results in a non-empty output directory");
+
   auto* schema = app.add_subcommand("print-schema", "Print a documented scenario template");
 
   try {
@@ -90,6 +111,7 @@ int main(int argc, char** argv) {
   rcdem::Progress::set_quiet_default(quiet);
   try {
     if (*gen) return generate(scenario, out, force);
+    if (*runc) return run(scenario, out, force);
     if (*schema) {
       rcdem::io::scenario_schema().print_template(std::cout);
       return 0;

@@ -94,10 +94,10 @@ TEST(Specimen, LocalPointPropertiesFollowEquations3To6) {
         1e-15);
     for (Index m = c.point_begin[k]; m < c.point_begin[k + 1]; ++m) {
       const Real A = c.point_area[m];
-      EXPECT_DOUBLE_EQ(c.kn[m], p.E_bar * A / d);
-      EXPECT_DOUBLE_EQ(c.ks[m], p.alpha * p.E_bar * A / d);
-      EXPECT_DOUBLE_EQ(c.fn_max[m], p.sigma_nt * A);
-      EXPECT_DOUBLE_EQ(c.c_max[m], p.tau * A);
+      EXPECT_DOUBLE_EQ(c.constants[m].kn, p.E_bar * A / d);
+      EXPECT_DOUBLE_EQ(c.constants[m].ks, p.alpha * p.E_bar * A / d);
+      EXPECT_DOUBLE_EQ(c.constants[m].fn_max, p.sigma_nt * A);
+      EXPECT_DOUBLE_EQ(c.constants[m].c_max, p.tau * A);
     }
   }
 }

@@ -30,7 +30,7 @@ TEST(LatticeTessellation, CubicLatticeGivesSquareFacetsAndExactStiffness) {
       EXPECT_EQ(net.points_of(c), 5);  // four corners and the centroid
       EXPECT_NEAR(net.distance0[c] / h, 1.0, 1e-12);
       Real kn = 0.0;
-      for (Index m = net.point_begin[c]; m < net.point_begin[c + 1]; ++m) kn += net.kn[m];
+      for (Index m = net.point_begin[c]; m < net.point_begin[c + 1]; ++m) kn += net.constants[m].kn;
       EXPECT_NEAR(kn / (params.E_bar * h), 1.0, 1e-12);
       EXPECT_NEAR(net.point_area[net.point_begin[c]] / (h * h / 3.0), 1.0, 1e-12);
     }

@@ -66,7 +66,7 @@ struct Reader {
     return std::nullopt;
   }
 
-  void read_key(const toml::node& node, const KeyDecl& decl) {
+  void read_key(const toml::node& node, const KeyDecl& decl, const std::string& path) {
     Value value;
     switch (decl.type) {
       case KeyType::Real: {
@@ -116,8 +116,8 @@ struct Reader {
         break;
       }
     }
-    values[decl.path] = std::move(value);
-    lines[decl.path] = static_cast<int>(node.source().begin.line);
+    values[path] = std::move(value);
+    lines[path] = static_cast<int>(node.source().begin.line);
   }
 
   void read_table(const toml::table& table, const std::string& prefix) {
@@ -140,7 +140,7 @@ struct Reader {
         fail("{}: '{}' is a section: expected a table [{}], got {}", where(node), path, path,
              node.is_array() ? "an array" : describe_node(node));
       if (!decl) unknown(node, path, prefix);
-      read_key(node, *decl);
+      read_key(node, *decl, path);
     }
   }
 
@@ -302,9 +302,10 @@ Scenario convert(Reader& r, const std::string& text) {
     p.side = face[1] == '-' ? -1 : 1;
     p.extent = std::get<std::vector<double>>(r.values.at(inst + ".extent"));
     if (!p.extent.empty() && (p.extent[0] >= p.extent[1] || p.extent[2] >= p.extent[3]))
-      fail("{}: key '{}.extent': expected [u_min, u_max, v_min, v_max] with u_min < u_max and "
-           "v_min < v_max",
-           r.at(inst + ".extent"), inst);
+      fail(
+          "{}: key '{}.extent': expected [u_min, u_max, v_min, v_max] with u_min < u_max and "
+          "v_min < v_max",
+          r.at(inst + ".extent"), inst);
     p.velocity = r.real(inst + ".velocity");
     p.ramp_time = r.real(inst + ".ramp_time");
     p.glued = r.boolean(inst + ".glued");

@@ -59,8 +59,8 @@ struct SolverSettings {
 
 struct PlateSettings {
   std::string name;
-  int axis = 2;     // 0, 1, 2 for x, y, z
-  int side = -1;    // -1: the face at the low end of the axis, +1: the high end
+  int axis = 2;              // 0, 1, 2 for x, y, z
+  int side = -1;             // -1: the face at the low end of the axis, +1: the high end
   std::vector<Real> extent;  // [u_min, u_max, v_min, v_max] or empty for the whole face
   Real velocity = 0.0;
   Real ramp_time = 0.0;

@@ -114,24 +114,29 @@ Schema build() {
   s.key(positive("contact.G_fn", 9.002, "J/m^2", "G_f,n: fracture energy in tension."));
   s.key(positive("contact.G_fs", 2380.785, "J/m^2", "G_f,s: fracture energy in shear."));
 
-  s.key(choice("contact.law", std::string("BL"), {"BL", "EL"},
-               "Concrete contact law: 'BL' bilinear softening (paper 2.4, SPEC 5) or 'EL' elastic."));
+  s.key(
+      choice("contact.law", std::string("BL"), {"BL", "EL"},
+             "Concrete contact law: 'BL' bilinear softening (paper 2.4, SPEC 5) or 'EL' elastic."));
 
   s.section("material", "Concrete as a continuum (SPEC 6).");
   s.key(positive("material.density", 2400.0, "kg/m^3",
                  "Concrete density; a particle's mass is this times its Voronoi cell volume."));
 
   s.section("solver", "Explicit time integration (SPEC 6).");
-  s.key(real("solver.dt_safety", 0.3, Range{0.0, 0.5, true, false}, "",
-             "Time step = this times min over bodies of sqrt(m / sum k) (and the rotational analogue)."));
+  s.key(real(
+      "solver.dt_safety", 0.3, Range{0.0, 0.5, true, false}, "",
+      "Time step = this times min over bodies of sqrt(m / sum k) (and the rotational analogue)."));
   s.key(real("solver.time_step", 0.0, Range{0.0, kInf}, "s",
              "Fixed time step; 0 = automatic. Refused if above the stable estimate times 0.5."));
   s.key(real("solver.damping", 0.7, Range{0.0, 1.0, false, true}, "",
              "Local non-viscous (Cundall) damping coefficient."));
-  s.key(real("solver.mass_scaling", 1.0, Range{1.0, 1.0e8}, "",
-             "Multiply every mass and inertia by this (a larger stable step for quasi-static runs)."));
+  s.key(real(
+      "solver.mass_scaling", 1.0, Range{1.0, 1.0e8}, "",
+      "Multiply every mass and inertia by this (a larger stable step for quasi-static runs)."));
 
-  s.section("plates.*", "A rigid plate on one face of the specimen (platen, support, loading plate).");
+  s.section("plates", "Rigid plates: one [plates.NAME] table per plate, NAME of your choice.");
+  s.section("plates.*",
+            "A rigid plate on one face of the specimen (platen, support, loading plate).");
   s.key(choice("plates.*.face", std::nullopt, {"x-", "x+", "y-", "y+", "z-", "z+"},
                "The specimen face the plate lies on; its normal points into the specimen."));
   {
@@ -142,8 +147,9 @@ Schema build() {
     k.unit = "m";
     s.key(k);
   }
-  s.key(real("plates.*.velocity", 0.0, Range{}, "m/s",
-             "Prescribed velocity along the face's axis (+ = towards +axis): displacement control."));
+  s.key(
+      real("plates.*.velocity", 0.0, Range{}, "m/s",
+           "Prescribed velocity along the face's axis (+ = towards +axis): displacement control."));
   s.key(real("plates.*.ramp_time", 0.0, Range{0.0, kInf}, "s",
              "The velocity rises smoothly from 0 over this time, to avoid a shock."));
   s.key(typed("plates.*.glued", KeyType::Boolean, false, Range{},
@@ -153,8 +159,9 @@ Schema build() {
              "Coulomb friction coefficient of an unglued plate (0 = frictionless)."));
 
   s.section("loading", "Which plate is the load and displacement of the test.");
-  s.key(typed("loading.control_plate", KeyType::String, std::string(""), Range{},
-              "Name of the plate whose reaction is the load and whose displacement is controlled."));
+  s.key(
+      typed("loading.control_plate", KeyType::String, std::string(""), Range{},
+            "Name of the plate whose reaction is the load and whose displacement is controlled."));
 
   s.section("stop", "Stop rules: the run ends when any active rule triggers (0 = off).");
   s.key(real("stop.displacement", 0.0, Range{0.0, kInf}, "m",

@@ -10,7 +10,8 @@ Specimen build_specimen(const Scenario& scenario) {
   s.particles = generate_packing(scenario.generation, s.geometry, &s.packing);
   const CellComplex cells = tessellate(s.particles, s.geometry, scenario.tessellation);
   s.particles.cell_volume = cells.volume;
-  s.contacts = build_contact_network(s.particles, cells, s.geometry, scenario.contact, &s.network);
+  s.contacts = build_contact_network(s.particles, cells, s.geometry, scenario.contact, &s.network,
+                                     &s.boundary);
   return s;
 }
 

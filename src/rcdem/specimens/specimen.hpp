@@ -14,6 +14,7 @@ struct Specimen {
   SpecimenGeometry geometry;
   Particles particles;
   ContactNetwork contacts;
+  BoundaryFaces boundary;
   PackingReport packing;
   NetworkReport network;
 };

@@ -5,6 +5,7 @@
 // [point_begin[c] + 1, point_begin[c + 1]) and nothing is stored twice.
 #include <vector>
 
+#include "rcdem/contact/laws/local_point_state.hpp"
 #include "rcdem/core/types.hpp"
 
 namespace rcdem {
@@ -20,11 +21,21 @@ struct ContactNetwork {
   // its stiffness (3)-(4) and strength (5)-(6).
   std::vector<Vec3> point_position0;
   std::vector<Real> point_area;
-  std::vector<Real> kn, ks, fn_max, c_max;
+  std::vector<LocalPointConstants> constants;  // kn, ks, fn_max, c_max: read together per point
 
   Index contact_count() const { return static_cast<Index>(particle_a.size()); }
   Index point_count() const { return static_cast<Index>(point_area.size()); }
   Index points_of(Index c) const { return point_begin[c + 1] - point_begin[c]; }
+};
+
+// The faces of the particles' Voronoi cells that lie on the specimen's outer faces (the cells are
+// clipped by them). Rigid plates act on the particles through these faces (SPEC 6).
+struct BoundaryFaces {
+  std::vector<Index> particle;
+  std::vector<int> face;  // 0..5 = x-, x+, y-, y+, z-, z+
+  std::vector<Real> area;
+  std::vector<Vec3> centroid;  // on the specimen face, at t = 0
+  Index size() const { return static_cast<Index>(particle.size()); }
 };
 
 }  // namespace rcdem

@@ -9,14 +9,30 @@ namespace rcdem {
 
 ContactNetwork build_contact_network(const Particles& p, const CellComplex& cc,
                                      const SpecimenGeometry& g, const ContactParameters& params,
-                                     NetworkReport* report) {
+                                     NetworkReport* report, BoundaryFaces* boundary) {
   ContactNetwork net;
   NetworkReport rep;
   net.point_begin.push_back(0);
   for (Index a = 0; a < cc.cell_count(); ++a) {
     for (Index f = cc.face_begin[a]; f < cc.face_begin[a + 1]; ++f) {
       const Index b = cc.face_neighbour[f];
-      if (b <= a) continue;  // a specimen face (b < 0), or the pair was taken from b's side
+      if (b < 0) {
+        // voro++ numbers the container walls -1..-6 for x-, x+, y-, y+, z-, z+.
+        if (boundary) {
+          const std::span<const Vec3> raw(
+              cc.vertices.data() + cc.vertex_begin[f],
+              static_cast<std::size_t>(cc.vertex_begin[f + 1] - cc.vertex_begin[f]));
+          const FacetSplit split = split_facet_area(raw);
+          if (split.area > 0.0) {
+            boundary->particle.push_back(a);
+            boundary->face.push_back(static_cast<int>(-b - 1));
+            boundary->area.push_back(split.area);
+            boundary->centroid.push_back(split.centroid);
+          }
+        }
+        continue;
+      }
+      if (b < a) continue;  // the pair was taken from b's side
       const Vec3& xa = p.position[a];
       const Vec3& xb = p.position[b];
       if (g.segment_crosses_notch(xa, xb)) {
@@ -38,13 +54,10 @@ ContactNetwork build_contact_network(const Particles& p, const CellComplex& cc,
       net.distance0.push_back(d);
       net.facet_area.push_back(split.area);
       auto add_point = [&](const Vec3& x, Real area) {
-        const LocalPointProperties q = local_point_properties(params, area, d);
+        const LocalPointConstants q = local_point_properties(params, area, d);
         net.point_position0.push_back(x);
         net.point_area.push_back(area);
-        net.kn.push_back(q.kn);
-        net.ks.push_back(q.ks);
-        net.fn_max.push_back(q.fn_max);
-        net.c_max.push_back(q.c_max);
+        net.constants.push_back(q);
       };
       add_point(split.centroid, split.centroid_area);
       for (std::size_t v = 0; v < verts.size(); ++v) add_point(verts[v], split.vertex_area[v]);

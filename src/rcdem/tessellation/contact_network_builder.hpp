@@ -18,6 +18,7 @@ struct NetworkReport {
 ContactNetwork build_contact_network(const Particles& particles, const CellComplex& cells,
                                      const SpecimenGeometry& geometry,
                                      const ContactParameters& parameters,
-                                     NetworkReport* report = nullptr);
+                                     NetworkReport* report = nullptr,
+                                     BoundaryFaces* boundary = nullptr);
 
 }  // namespace rcdem

@@ -1,0 +1,19 @@
+#include "rcdem/contact/contact_state.hpp"
+
+namespace rcdem {
+
+void ContactState::init(const ContactNetwork& net, const std::vector<Vec3>& x) {
+  const auto nc = static_cast<std::size_t>(net.contact_count());
+  point.assign(static_cast<std::size_t>(net.point_count()), LocalPointState{});
+  normal.resize(nc);
+  for (std::size_t c = 0; c < nc; ++c)
+    normal[c] = (x[net.particle_b[c]] - x[net.particle_a[c]]).normalized();
+  force_b.assign(nc, Vec3::Zero());
+  torque_b.assign(nc, Vec3::Zero());
+  torque_a.assign(nc, Vec3::Zero());
+  strain_energy.assign(nc, 0.0);
+  dissipated_damage.assign(nc, 0.0);
+  dissipated_friction.assign(nc, 0.0);
+}
+
+}  // namespace rcdem

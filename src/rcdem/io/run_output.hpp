@@ -1,0 +1,41 @@
+#pragma once
+// What a run writes as it goes: VTU snapshots of particles and facets with a .pvd series each,
+// and the history table (SPEC 11). Every file is replaced atomically.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "rcdem/solver/simulation.hpp"
+
+namespace rcdem::io {
+
+class SnapshotWriter {
+ public:
+  SnapshotWriter(std::filesystem::path dir, bool binary, bool facets);
+  void write(const Simulation& sim);  // snapshots/particles_NNNNNN.vtu, facets_NNNNNN.vtu, *.pvd
+
+ private:
+  std::filesystem::path dir_;
+  bool binary_, facets_;
+  std::vector<std::pair<double, std::string>> particle_series_, facet_series_;
+};
+
+class History {
+ public:
+  explicit History(const Simulation& sim, std::string control_plate);
+  void record(const Simulation& sim);
+  void write(const std::filesystem::path& path) const;
+  std::size_t rows() const { return rows_.size(); }
+  const std::vector<std::string>& columns() const { return columns_; }
+  const std::vector<std::vector<double>>& data() const { return rows_; }
+
+ private:
+  std::string control_;
+  std::vector<std::string> columns_;
+  std::vector<std::vector<double>> rows_;
+};
+
+// Per-particle damage for display: the area-weighted mean D over the particle's local points.
+std::vector<Real> particle_damage(const Simulation& sim);
+
+}  // namespace rcdem::io

@@ -1,0 +1,164 @@
+#include "rcdem/solver/plates.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "rcdem/core/error.hpp"
+#include "rcdem/core/parallel.hpp"
+
+namespace rcdem {
+
+namespace {
+
+// The two axes spanning a plate, in x, y, z order.
+std::pair<int, int> plane_axes(int axis) { return {axis == 0 ? 1 : 0, axis == 2 ? 1 : 2}; }
+
+}  // namespace
+
+Real Plate::velocity_at(Real t) const {
+  if (ramp_time <= 0.0 || t >= ramp_time) return velocity;
+  // A smooth (cosine) ramp: no jump in acceleration, so no shock wave at the start.
+  return velocity * 0.5 * (1.0 - std::cos(kPi * t / ramp_time));
+}
+
+Real Plate::load() const {
+  const Real f = force[axis];
+  return velocity > 0.0 ? -f : velocity < 0.0 ? f : -side * f;
+}
+
+std::vector<Plate> make_plates(const std::vector<PlateSettings>& settings,
+                               const SpecimenGeometry& g) {
+  std::vector<Plate> plates;
+  for (const auto& s : settings) {
+    Plate p;
+    p.name = s.name;
+    p.axis = s.axis;
+    p.side = s.side;
+    p.normal = Vec3::Zero();
+    p.normal[s.axis] = -s.side;
+    p.face_coordinate = s.side < 0 ? g.lo[s.axis] : g.hi[s.axis];
+    const auto [u, v] = plane_axes(s.axis);
+    if (s.extent.empty()) {
+      p.u_min = g.lo[u];
+      p.u_max = g.hi[u];
+      p.v_min = g.lo[v];
+      p.v_max = g.hi[v];
+    } else {
+      p.u_min = s.extent[0];
+      p.u_max = s.extent[1];
+      p.v_min = s.extent[2];
+      p.v_max = s.extent[3];
+    }
+    p.velocity = s.velocity;
+    p.ramp_time = s.ramp_time;
+    p.glued = s.glued;
+    p.friction = s.friction;
+    plates.push_back(p);
+  }
+  return plates;
+}
+
+PlateContacts make_plate_contacts(const std::vector<Plate>& plates, const BoundaryFaces& faces,
+                                  const Bodies& bodies, const ContactParameters& params) {
+  PlateContacts pc;
+  for (std::size_t p = 0; p < plates.size(); ++p) {
+    const Plate& plate = plates[p];
+    const int face = 2 * plate.axis + (plate.side > 0 ? 1 : 0);
+    const auto [u, v] = plane_axes(plate.axis);
+    Index touching = 0;
+    for (Index k = 0; k < faces.size(); ++k) {
+      if (faces.face[k] != face) continue;
+      const Index i = faces.particle[k];
+      const Vec3& c = faces.centroid[k];
+      const Real h0 = std::abs(bodies.position0[i][plate.axis] - plate.face_coordinate);
+      const Real kn = params.E_bar * faces.area[k] / (2.0 * h0);
+      pc.plate.push_back(static_cast<int>(p));
+      pc.particle.push_back(i);
+      pc.point0.push_back(c);
+      pc.constants.push_back({kn, params.alpha * kn, 0.0, 0.0});
+      touching += (c[u] >= plate.u_min && c[u] <= plate.u_max && c[v] >= plate.v_min &&
+                   c[v] <= plate.v_max);
+    }
+    if (touching == 0)
+      fail(
+          "plate '{}' touches no particle: its rectangle [{}, {}] x [{}, {}] m misses the "
+          "specimen's face",
+          plate.name, plate.u_min, plate.u_max, plate.v_min, plate.v_max);
+  }
+  const auto n = static_cast<std::size_t>(pc.size());
+  pc.state.assign(n, LocalPointState{});
+  pc.force.assign(n, Vec3::Zero());
+  pc.torque.assign(n, Vec3::Zero());
+  pc.strain_energy.assign(n, 0.0);
+  pc.dissipated_friction.assign(n, 0.0);
+  pc.active.assign(n, 0);
+  return pc;
+}
+
+void evaluate_plate_contacts(std::vector<Plate>& plates, PlateContacts& pc, const Bodies& b) {
+  parallel_for(pc.size(), [&](Index k) {
+    const Plate& plate = plates[static_cast<std::size_t>(pc.plate[k])];
+    const Index i = pc.particle[k];
+    const Vec3 n = plate.normal;
+    // The particle's material point that lay on the face at t = 0, against the plate's.
+    const Vec3 pp = b.position[i] + b.orientation[i] * (pc.point0[k] - b.position0[i]);
+    Vec3 plate_point = pc.point0[k];
+    plate_point[plate.axis] += plate.displacement;
+    const Vec3 u = pp - plate_point;
+    const Real un = u.dot(n);  // opening positive: the particle moving off the plate
+    const Vec3 us = u - un * n;
+    const auto [ua, va] = plane_axes(plate.axis);
+    const bool on_plate = pp[ua] >= plate.u_min && pp[ua] <= plate.u_max && pp[va] >= plate.v_min &&
+                          pp[va] <= plate.v_max;
+    LocalPointState& s = pc.state[k];
+    const LocalPointConstants& c = pc.constants[k];
+    Real friction_loss = 0.0;
+    if (!on_plate || (!plate.glued && un >= 0.0)) {
+      s = LocalPointState{};  // separated: the contact forgets its history
+      s.un = un;
+      s.us = us;
+      pc.active[k] = 0;
+    } else if (plate.glued) {
+      s.fn = c.kn * un;
+      s.fs = -c.ks * us;
+      s.un = un;
+      s.us = us;
+      pc.active[k] = 1;
+    } else {
+      // Unilateral, Coulomb friction: the shear spring is incremental so that it can slide.
+      const bool was_active = pc.active[k] != 0;
+      const Vec3 dus = was_active ? Vec3(us - s.us) : Vec3::Zero();
+      const Vec3 fs_old = s.fs;
+      s.fn = c.kn * un;  // compression: negative
+      Vec3 fs = s.fs - c.ks * dus;
+      const Real cap = plate.friction * (-s.fn);
+      const Real len = fs.norm();
+      if (len > cap) fs *= (len > 0.0 ? cap / len : 0.0);
+      // Work of the slip on the spring minus its change of energy: the friction loss.
+      const Real work = -0.5 * (fs_old + fs).dot(dus);
+      friction_loss = work - (fs.squaredNorm() - fs_old.squaredNorm()) / (2.0 * c.ks);
+      s.fs = fs;
+      s.un = un;
+      s.us = us;
+      pc.active[k] = 1;
+    }
+    const Vec3 f = -s.fn * n + s.fs;
+    pc.force[k] = f;
+    pc.torque[k] = (pp - b.position[i]).cross(f);
+    pc.strain_energy[k] =
+        pc.active[k] ? 0.5 * s.fn * s.fn / c.kn + 0.5 * s.fs.squaredNorm() / c.ks : 0.0;
+    pc.dissipated_friction[k] = friction_loss;
+  });
+  // The reactions, summed in a fixed order.
+  for (auto& p : plates) {
+    p.force = Vec3::Zero();
+    p.contacts_active = 0;
+  }
+  for (Index k = 0; k < pc.size(); ++k) {
+    Plate& p = plates[static_cast<std::size_t>(pc.plate[k])];
+    p.force -= pc.force[k];
+    p.contacts_active += pc.active[k];
+  }
+}
+
+}  // namespace rcdem

@@ -1,0 +1,68 @@
+#pragma once
+// Rigid plates (platens, supports, loading plates; SPEC 6): axis-aligned rectangles on a face of
+// the specimen, moved under displacement control. A plate acts on the particles whose Voronoi
+// cells have a face on its side of the specimen: one contact point at that face's centroid, with
+// the stiffness a particle-particle contact of the same area would have with the particle's
+// mirror image, k_n = E_bar A / (2 h0) and k_s = alpha k_n (h0: centre-to-face distance at t = 0).
+// Whether the point lies on the plate is checked every step, so contacts start and end as the
+// specimen moves.
+#include <string>
+#include <vector>
+
+#include "rcdem/contact/laws/local_point_state.hpp"
+#include "rcdem/core/types.hpp"
+#include "rcdem/io/scenario.hpp"
+#include "rcdem/specimens/specimen_geometry.hpp"
+#include "rcdem/state/bodies.hpp"
+#include "rcdem/state/contact_network.hpp"
+
+namespace rcdem {
+
+struct Plate {
+  std::string name;
+  int axis = 2;
+  int side = -1;                    // -1: on the low face of the axis (normal +axis), +1: high face
+  Vec3 normal;                      // unit, into the specimen
+  Real face_coordinate = 0.0;       // the face's coordinate along the axis at t = 0
+  Real u_min, u_max, v_min, v_max;  // rectangle in the other two axes (ascending order)
+  Real velocity = 0.0;              // along +axis
+  Real ramp_time = 0.0;
+  bool glued = false;
+  Real friction = 0.0;
+
+  Real displacement = 0.0;    // along +axis since t = 0
+  Vec3 force = Vec3::Zero();  // exerted on the plate by the specimen
+  Real work = 0.0;            // done by the plate on the specimen
+  Index contacts_active = 0;
+
+  Real velocity_at(Real t) const;
+  // The reaction along the axis, signed so that it is positive when it resists the plate's motion.
+  Real load() const;
+};
+
+struct PlateContacts {
+  std::vector<int> plate;
+  std::vector<Index> particle;
+  std::vector<Vec3> point0;  // the face centroid at t = 0
+  std::vector<LocalPointConstants> constants;
+  std::vector<LocalPointState> state;
+  std::vector<Vec3> force;   // on the particle, this step
+  std::vector<Vec3> torque;  // on the particle, about its centre
+  std::vector<Real> strain_energy, dissipated_friction;
+  std::vector<std::uint8_t> active;
+
+  Index size() const { return static_cast<Index>(plate.size()); }
+};
+
+std::vector<Plate> make_plates(const std::vector<PlateSettings>& settings,
+                               const SpecimenGeometry& geometry);
+
+// One contact for every boundary face on a plate's face (inside the rectangle or not: that is
+// decided every step). Fails if a plate touches no particle.
+PlateContacts make_plate_contacts(const std::vector<Plate>& plates, const BoundaryFaces& faces,
+                                  const Bodies& bodies, const ContactParameters& params);
+
+// Contact forces between plates and particles (SPEC 6), and each plate's reaction.
+void evaluate_plate_contacts(std::vector<Plate>& plates, PlateContacts& pc, const Bodies& bodies);
+
+}  // namespace rcdem

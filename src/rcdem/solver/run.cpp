@@ -1,0 +1,199 @@
+#include "rcdem/solver/run.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "rcdem/core/error.hpp"
+#include "rcdem/core/progress.hpp"
+#include "rcdem/io/atomic_file.hpp"
+#include "rcdem/io/run_output.hpp"
+#include "rcdem/io/specimen_output.hpp"
+
+namespace rcdem {
+
+namespace {
+
+std::string at(const Scenario& s, const std::string& key) {
+  const auto it = s.key_line.find(key);
+  return it == s.key_line.end() ? s.source.string()
+                                : fmt::format("{}:{}", s.source.string(), it->second);
+}
+
+const PlateSettings* find(const Scenario& s, const std::string& name) {
+  for (const auto& p : s.plates)
+    if (p.name == name) return &p;
+  return nullptr;
+}
+
+}  // namespace
+
+void validate_run(const Scenario& s) {
+  if (s.plates.empty())
+    fail("{}: a run needs plates: add at least one [plates.NAME] section with its face",
+         s.source.string());
+  if (!s.stop.any())
+    fail("{}: no stop rule: set stop.displacement, stop.load_drop, stop.time or stop.steps",
+         s.source.string());
+  const PlateSettings* control = find(s, s.control_plate);
+  if ((s.stop.displacement > 0.0 || s.stop.load_drop > 0.0) && !control)
+    fail(
+        "{}: stop.displacement and stop.load_drop need loading.control_plate, the plate they "
+        "refer to",
+        at(s, s.stop.displacement > 0.0 ? "stop.displacement" : "stop.load_drop"));
+  bool moving = false;
+  for (const auto& p : s.plates) moving |= p.velocity != 0.0;
+  if (!moving && s.stop.time <= 0.0 && s.stop.steps <= 0)
+    fail(
+        "{}: no plate moves (every velocity is 0), so stop.displacement and stop.load_drop "
+        "can never trigger; set a plate's velocity, or stop.time or stop.steps",
+        s.source.string());
+  if (s.stop.displacement > 0.0 && control->velocity == 0.0 && s.stop.time <= 0.0 &&
+      s.stop.steps <= 0)
+    fail(
+        "{}: stop.displacement can never trigger: the control plate '{}' does not move "
+        "(velocity 0)",
+        at(s, "stop.displacement"), control->name);
+}
+
+RunSummary run_scenario(const Scenario& sc, const std::filesystem::path& out,
+                        const std::function<void(const Simulation&)>& on_step) {
+  validate_run(sc);
+  const auto wall_start = std::chrono::steady_clock::now();
+  Specimen specimen = build_specimen(sc);
+  io::write_particles_vtu(out / "particles_initial.vtu", specimen, sc.output.binary_vtu);
+  Simulation sim(sc, std::move(specimen));
+  const bool quiet = Progress::quiet_default();
+  if (!quiet)
+    fmt::print(stderr,
+               "time step {:.4g} s (stable estimate {:.4g} s, safety {}); {} bodies, {} "
+               "contacts, {} local points, {} plate contacts\n",
+               sim.time_step(), sim.stable_time_step(),
+               sc.solver.time_step > 0.0 ? sc.solver.time_step / sim.stable_time_step()
+                                         : sc.solver.dt_safety,
+               sim.bodies().size(), sim.specimen().contacts.contact_count(),
+               sim.specimen().contacts.point_count(), sim.plate_contacts().size());
+
+  // How many steps the run will take, where a rule tells: for the history and snapshot spacing
+  // and the progress line.
+  const Plate* control = sim.find_plate(sc.control_plate);
+  Real expected = std::numeric_limits<Real>::infinity();
+  if (sc.stop.steps > 0) expected = std::min(expected, static_cast<Real>(sc.stop.steps));
+  if (sc.stop.time > 0.0) expected = std::min(expected, sc.stop.time / sim.time_step());
+  if (sc.stop.displacement > 0.0 && control && control->velocity != 0.0)
+    expected = std::min(
+        expected, (sc.stop.displacement / std::abs(control->velocity) + 0.5 * control->ramp_time) /
+                      sim.time_step());
+  if (!std::isfinite(expected)) expected = 1e5;  // load_drop only: a guess for the spacing
+  const auto history_every = std::max<std::int64_t>(
+      1, static_cast<std::int64_t>(expected / static_cast<Real>(sc.output.history_rows)));
+  const auto snapshot_every =
+      sc.output.snapshots > 0
+          ? std::max<std::int64_t>(
+                1, static_cast<std::int64_t>(expected / static_cast<Real>(sc.output.snapshots)))
+          : std::numeric_limits<std::int64_t>::max();
+
+  io::History history(sim, sc.control_plate);
+  io::SnapshotWriter snapshots(out, sc.output.binary_vtu, sc.output.write_facets);
+  snapshots.write(sim);
+  history.record(sim);
+
+  RunSummary r;
+  Real peak = 0.0;
+  const bool tty = ::isatty(STDERR_FILENO) != 0;
+  auto last_report = std::chrono::steady_clock::now();
+  const auto loop_start = last_report;
+  for (;;) {
+    sim.step();
+    if (on_step) on_step(sim);
+    const Real load = control ? control->load() : 0.0;
+    if (load > peak) {
+      peak = load;
+      r.peak_load = load;
+      r.displacement_at_peak = control->displacement;
+      const Real strain = sim.energy().strain;
+      r.kinetic_over_strain_at_peak = strain > 0.0 ? sim.energy().kinetic / strain : 0.0;
+    }
+    const std::int64_t n = sim.steps();
+    if (n % history_every == 0) history.record(sim);
+    if (n % snapshot_every == 0) {
+      snapshots.write(sim);
+      history.write(out / "history.csv");
+    }
+    // Stop rules.
+    if (sc.stop.steps > 0 && n >= sc.stop.steps) r.stop_reason = "steps";
+    if (sc.stop.time > 0.0 && sim.time() >= sc.stop.time) r.stop_reason = "time";
+    if (sc.stop.displacement > 0.0 && std::abs(control->displacement) >= sc.stop.displacement)
+      r.stop_reason = "displacement";
+    // After the peak: the load has fallen below the fraction, and the peak is a real one (the
+    // specimen has cracked: some local point is fully broken).
+    if (sc.stop.load_drop > 0.0 && peak > 0.0 && load < sc.stop.load_drop * peak &&
+        sim.energy().damage > 0.0)
+      r.stop_reason = "load_drop";
+    const auto now = std::chrono::steady_clock::now();
+    if (!quiet && std::chrono::duration<double>(now - last_report).count() > (tty ? 0.5 : 10.0)) {
+      last_report = now;
+      const double elapsed = std::chrono::duration<double>(now - loop_start).count();
+      const double rate = static_cast<double>(n) / elapsed;
+      const double frac = std::min(1.0, static_cast<double>(n) / expected);
+      fmt::print(stderr,
+                 "{}step {} ({:.1f}%)  {:.0f} steps/s  ETA {:.0f} s  load {:.4g} N  peak "
+                 "{:.4g} N{}",
+                 tty ? "\r" : "", n, 100.0 * frac, rate,
+                 rate > 0 ? (expected - static_cast<double>(n)) / rate : 0.0, load, peak,
+                 tty ? "   " : "\n");
+      std::fflush(stderr);
+    }
+    if (!r.stop_reason.empty()) break;
+  }
+  if (!quiet && tty) fmt::print(stderr, "\n");
+  if (history.rows() == 0 || history.data().back()[0] != static_cast<double>(sim.steps()))
+    history.record(sim);
+  snapshots.write(sim);
+  history.write(out / "history.csv");
+
+  r.steps = sim.steps();
+  r.time = sim.time();
+  r.energy = sim.energy();
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  auto& j = r.json;
+  j["scenario"] = sc.source.string();
+  j["stop_reason"] = r.stop_reason;
+  j["steps"] = r.steps;
+  j["time_s"] = r.time;
+  j["time_step_s"] = sim.time_step();
+  j["stable_time_step_s"] = sim.stable_time_step();
+  j["control_plate"] = sc.control_plate;
+  j["peak_load_N"] = r.peak_load;
+  j["displacement_at_peak_m"] = r.displacement_at_peak;
+  j["kinetic_over_strain_at_peak"] = r.kinetic_over_strain_at_peak;
+  const Energy& e = r.energy;
+  j["energy"] = {{"external_work_J", e.external_work},
+                 {"strain_J", e.strain},
+                 {"kinetic_J", e.kinetic},
+                 {"dissipated_damage_J", e.damage},
+                 {"dissipated_friction_J", e.friction},
+                 {"dissipated_damping_J", e.damping},
+                 {"balance_error", e.balance_error()}};
+  j["damaged_points"] = sim.damaged_points();
+  j["broken_points"] = sim.broken_points();
+  j["local_points"] = sim.specimen().contacts.point_count();
+  j["specimen"] = io::specimen_summary(sc, sim.specimen());
+  j["seconds"] = wall;
+  io::write_file_atomically(out / "summary.json", j.dump(2) + "\n");
+  if (!quiet)
+    fmt::print(stderr,
+               "stopped by {} after {} steps (t = {:.4g} s); peak load {:.6g} N at {:.4g} m; "
+               "energy balance: external work {:.6g} J = strain {:.6g} + kinetic {:.4g} + "
+               "dissipated {:.6g} J (error {:.3f}%)\n",
+               r.stop_reason, r.steps, r.time, r.peak_load, r.displacement_at_peak, e.external_work,
+               e.strain, e.kinetic, e.dissipated(), 100.0 * e.balance_error());
+  return r;
+}
+
+}  // namespace rcdem

@@ -1,0 +1,76 @@
+#pragma once
+// The explicit rigid-particle solver (SPEC 4-6): state, the fixed step pipeline
+//   contacts -> plate contacts -> gather per body -> damping + leap-frog -> plates move,
+// and the energy ledger. Stop rules, history and snapshots live in the run loop (run.hpp).
+#include <vector>
+
+#include "rcdem/contact/contact_state.hpp"
+#include "rcdem/contact/laws/bilinear_softening.hpp"
+#include "rcdem/contact/laws/elastic.hpp"
+#include "rcdem/io/scenario.hpp"
+#include "rcdem/solver/body_contacts.hpp"
+#include "rcdem/solver/energy.hpp"
+#include "rcdem/solver/plates.hpp"
+#include "rcdem/specimens/specimen.hpp"
+#include "rcdem/state/bodies.hpp"
+
+namespace rcdem {
+
+class Simulation {
+ public:
+  // Takes the specimen; the time step is the stable estimate times solver.dt_safety, or the
+  // scenario's fixed step (refused above half the critical estimate: dt_safety's upper bound).
+  Simulation(const Scenario& scenario, Specimen specimen);
+
+  void step();
+
+  // min over bodies of sqrt(m / sum k) and sqrt(I / sum k r^2) (SPEC 6).
+  Real stable_time_step() const { return stable_dt_; }
+  Real time_step() const { return dt_; }
+  void set_time_step(Real dt) { dt_ = dt; }  // for tests that probe stability
+  Real time() const { return time_; }
+  std::int64_t steps() const { return steps_; }
+
+  const Specimen& specimen() const { return specimen_; }
+  Bodies& bodies() { return bodies_; }
+  const Bodies& bodies() const { return bodies_; }
+  const ContactState& contacts() const { return contacts_; }
+  ContactState& contacts() { return contacts_; }
+  std::vector<Plate>& plates() { return plates_; }
+  const std::vector<Plate>& plates() const { return plates_; }
+  const PlateContacts& plate_contacts() const { return plate_contacts_; }
+  const Plate* find_plate(const std::string& name) const;
+  const Energy& energy() const { return energy_; }
+
+  Index damaged_points() const;  // 0 < D < 1
+  Index broken_points() const;   // D = 1
+
+  // Steps without the damping term or plates, for verification tests.
+  void set_damping(Real alpha) { damping_ = alpha; }
+
+ private:
+  void compute_stable_time_step();
+  void gather_forces();
+  void integrate();
+
+  Specimen specimen_;
+  Bodies bodies_;
+  ContactState contacts_;
+  BodyContacts body_contacts_;
+  std::vector<Plate> plates_;
+  PlateContacts plate_contacts_;
+  ConcreteLaw law_kind_;
+  BilinearSoftening bilinear_;
+  Elastic elastic_;
+  Real damping_;
+  Real dt_ = 0.0, stable_dt_ = 0.0;
+  Real time_ = 0.0;
+  std::int64_t steps_ = 0;
+  Energy energy_;
+  Real kinetic_half_ = 0.0;  // kinetic energy at the last half step
+  std::vector<Real> plate_force_prev_, plate_displacement_prev_;
+  std::vector<Real> body_damping_work_, body_kinetic_;
+  std::vector<std::uint8_t> body_jumped_;
+};
+
+}  // namespace rcdem

@@ -1,0 +1,31 @@
+#pragma once
+// Rigid bodies with 6 degrees of freedom (SPEC 6), structure of arrays. Spheres now; the bars'
+// cylinders (SPEC 7) join the same arrays with their own, non-isotropic inertia.
+#include <Eigen/Geometry>
+#include <vector>
+
+#include "rcdem/core/types.hpp"
+#include "rcdem/state/particles.hpp"
+
+namespace rcdem {
+
+using Quat = Eigen::Quaternion<Real>;
+
+struct Bodies {
+  std::vector<Vec3> position, position0;  // centre of mass now and at t = 0
+  std::vector<Vec3> velocity;             // at the half step (leap-frog)
+  std::vector<Vec3> angular_velocity;     // world frame, at the half step
+  std::vector<Quat> orientation;          // rotation from t = 0 (identity at t = 0)
+  std::vector<Real> mass;
+  std::vector<Vec3> inertia;        // principal moments in the body frame
+  std::vector<Vec3> force, torque;  // gathered each step
+  std::vector<Real> radius;         // size scale, for the instability check
+
+  Index size() const { return static_cast<Index>(position.size()); }
+};
+
+// Mass = density x Voronoi cell volume, so the specimen weighs density x volume; inertia 2/5 m r^2
+// with r the sphere radius (SPEC 6, assumed). `mass_scaling` multiplies both.
+Bodies bodies_from_particles(const Particles& particles, Real density, Real mass_scaling);
+
+}  // namespace rcdem
