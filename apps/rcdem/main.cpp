@@ -3,9 +3,12 @@
 
 #include <CLI/CLI.hpp>
 #include <chrono>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 
+#include "rcdem/calibration/calibrate.hpp"
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
 #include "rcdem/io/atomic_file.hpp"
@@ -80,6 +83,74 @@ int run(const fs::path& scenario_path, fs::path out, bool force) {
   return 0;
 }
 
+// --set NAME=VALUE for the contact parameters and the seed of a calibration.
+void apply_override(rcdem::Scenario& s, const std::string& item) {
+  const auto eq = item.find('=');
+  if (eq == std::string::npos) rcdem::fail("--set '{}': expected NAME=VALUE", item);
+  const std::string name = item.substr(0, eq);
+  char* end = nullptr;
+  const double v = std::strtod(item.c_str() + eq + 1, &end);
+  if (end == item.c_str() + eq + 1 || *end != '\0' || !std::isfinite(v))
+    rcdem::fail("--set '{}': expected a number after '='", item);
+  auto& c = s.contact;
+  struct Key {
+    const char* name;
+    double* value;
+    bool positive;
+  };
+  const Key keys[] = {{"contact.E_bar", &c.E_bar, true}, {"contact.alpha", &c.alpha, false},
+                      {"contact.mu_c", &c.mu_c, false},  {"contact.sigma_nt", &c.sigma_nt, true},
+                      {"contact.tau", &c.tau, true},     {"contact.G_fn", &c.G_fn, true},
+                      {"contact.G_fs", &c.G_fs, true}};
+  for (const auto& k : keys)
+    if (name == k.name) {
+      if (k.positive ? !(v > 0.0) : !(v >= 0.0))
+        rcdem::fail("--set '{}': {} must be {}", item, name, k.positive ? "> 0" : ">= 0");
+      *k.value = v;
+      return;
+    }
+  if (name == "generation.seed" && v >= 0.0 && v == std::floor(v)) {
+    s.generation.seed = static_cast<std::uint64_t>(v);
+    return;
+  }
+  rcdem::fail(
+      "--set '{}': unknown or invalid (expected contact.E_bar, contact.alpha, contact.mu_c, "
+      "contact.sigma_nt, contact.tau, contact.G_fn, contact.G_fs or generation.seed)",
+      item);
+}
+
+int calibrate(const fs::path& scenario_path, fs::path out, bool force, double size,
+              double rate_factor, const std::vector<std::string>& sets, const std::string& target,
+              double tolerance, int iterations) {
+  rcdem::Scenario base = rcdem::load_scenario(scenario_path);
+  for (const auto& item : sets) apply_override(base, item);
+  rcdem::CalibrationOptions opt;
+  opt.uniaxial.size = size;
+  opt.uniaxial.rate_factor = rate_factor;
+  opt.tolerance = tolerance;
+  opt.max_iterations = iterations;
+  if (!target.empty()) opt.target = rcdem::parse_macro_properties(target);
+  const auto largest = std::max(base.generation.aggregate_d_max, base.generation.mortar_d_max);
+  if (size < 4.0 * largest)
+    rcdem::fail("--size {} m: a cube needs at least four of the largest diameters ({} m) per side",
+                size, 4.0 * largest);
+  if (out.empty()) out = fs::path("results") / ("calibrate_" + scenario_path.stem().string());
+  const bool created = rcdem::io::prepare_output_directory(out, force);
+  try {
+    const auto r = rcdem::calibrate(base, opt, out);
+    fmt::print(
+        "E = {:.4g} GPa, nu = {:.4f}, sigma_c = {:.4g} MPa, sigma_t = {:.4g} MPa "
+        "(sigma_c / sigma_t = {:.1f}){}\nwritten to {}\n",
+        r.measured.E / 1e9, r.measured.nu, r.measured.sigma_c / 1e6, r.measured.sigma_t / 1e6,
+        r.measured.sigma_c / r.measured.sigma_t,
+        opt.target ? (r.converged ? "; converged" : "; NOT converged") : "", out.string());
+    return opt.target && !r.converged ? 4 : 0;
+  } catch (...) {
+    rcdem::io::remove_if_created_and_empty(out, created);
+    throw;
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -101,6 +172,29 @@ int main(int argc, char** argv) {
   runc->add_option("-o,--output", out, "Output directory (default results/<scenario name>)");
   runc->add_flag("--force", force, "Overwrite the results in a non-empty output directory");
 
+  double size = 0.160, rate_factor = 1.0, tolerance = 0.05;
+  int iterations = 8;
+  std::vector<std::string> sets;
+  std::string target;
+  auto* cal = app.add_subcommand(
+      "calibrate", "Uniaxial compression and tension on a cube: E, nu, sigma_c, sigma_t (SPEC 9)");
+  cal->add_option("scenario", scenario,
+                  "Base scenario: generation and contact parameters (e.g. "
+                  "examples/uniaxial/cube160.toml)")
+      ->required();
+  cal->add_option("-o,--output", out, "Output directory (default results/calibrate_<name>)");
+  cal->add_flag("--force", force, "Overwrite the results in a non-empty output directory");
+  cal->add_option("--size", size, "Cube side [m]")->check(CLI::PositiveNumber);
+  cal->add_option("--rate-factor", rate_factor, "Multiply the loading rates (quasi-static checks)")
+      ->check(CLI::PositiveNumber);
+  cal->add_option("--set", sets, "Override a parameter: contact.NAME=VALUE or generation.seed=N");
+  cal->add_option("--target", target,
+                  "Search contact parameters for E=..,nu=..,sigma_c=..,sigma_t=.. (SI)");
+  cal->add_option("--tolerance", tolerance, "Relative tolerance of the search")
+      ->check(CLI::Range(0.001, 0.5));
+  cal->add_option("--iterations", iterations, "At most this many search iterations")
+      ->check(CLI::Range(1, 50));
+
   auto* schema = app.add_subcommand("print-schema", "Print a documented scenario template");
 
   try {
@@ -112,6 +206,9 @@ int main(int argc, char** argv) {
   try {
     if (*gen) return generate(scenario, out, force);
     if (*runc) return run(scenario, out, force);
+    if (*cal)
+      return calibrate(scenario, out, force, size, rate_factor, sets, target, tolerance,
+                       iterations);
     if (*schema) {
       rcdem::io::scenario_schema().print_template(std::cout);
       return 0;

@@ -30,6 +30,26 @@ std::vector<Real> particle_damage(const Simulation& sim) {
   return sum;
 }
 
+Vec3 face_strains(const Simulation& sim) {
+  // Like gauges on the specimen: the mean displacement of the particles on each face, along the
+  // face's normal; high face minus low face, over the specimen's length.
+  const BoundaryFaces& f = sim.specimen().boundary;
+  const Bodies& b = sim.bodies();
+  Real sum[6] = {0, 0, 0, 0, 0, 0}, area[6] = {0, 0, 0, 0, 0, 0};
+  for (Index k = 0; k < f.size(); ++k) {
+    const int face = f.face[k];
+    const Index i = f.particle[k];
+    sum[face] += f.area[k] * (b.position[i][face / 2] - b.position0[i][face / 2]);
+    area[face] += f.area[k];
+  }
+  const Vec3 size = sim.specimen().geometry.size();
+  Vec3 e = Vec3::Zero();
+  for (int a = 0; a < 3; ++a)
+    if (area[2 * a] > 0.0 && area[2 * a + 1] > 0.0)
+      e[a] = (sum[2 * a + 1] / area[2 * a + 1] - sum[2 * a] / area[2 * a]) / size[a];
+  return e;
+}
+
 SnapshotWriter::SnapshotWriter(fs::path dir, bool binary, bool facets)
     : dir_(std::move(dir)), binary_(binary), facets_(facets) {
   fs::create_directories(dir_ / "snapshots");
@@ -104,9 +124,10 @@ History::History(const Simulation& sim, std::string control) : control_(std::mov
     columns_.push_back(p.name + "_displacement_m");
     columns_.push_back(p.name + "_force_N");
   }
-  for (const char* c : {"load_N", "kinetic_J", "strain_J", "dissipated_damage_J",
-                        "dissipated_friction_J", "dissipated_damping_J", "external_work_J",
-                        "energy_balance_error", "damaged_points", "broken_points"})
+  for (const char* c :
+       {"strain_x", "strain_y", "strain_z", "load_N", "kinetic_J", "strain_J",
+        "dissipated_damage_J", "dissipated_friction_J", "dissipated_damping_J", "external_work_J",
+        "energy_balance_error", "damaged_points", "broken_points"})
     columns_.emplace_back(c);
 }
 
@@ -116,6 +137,8 @@ void History::record(const Simulation& sim) {
     row.push_back(p.displacement);
     row.push_back(p.force[p.axis]);
   }
+  const Vec3 strain = face_strains(sim);
+  row.insert(row.end(), {strain.x(), strain.y(), strain.z()});
   const Plate* control = sim.find_plate(control_);
   const Energy& e = sim.energy();
   row.insert(row.end(),

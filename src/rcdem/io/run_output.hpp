@@ -35,6 +35,10 @@ class History {
   std::vector<std::vector<double>> rows_;
 };
 
+// Mean strains of the specimen along x, y, z from the displacements of its boundary particles
+// (area-weighted per face): what gauges glued on the faces would read.
+Vec3 face_strains(const Simulation& sim);
+
 // Per-particle damage for display: the area-weighted mean D over the particle's local points.
 std::vector<Real> particle_damage(const Simulation& sim);
 

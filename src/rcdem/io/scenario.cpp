@@ -342,6 +342,46 @@ Scenario parse_scenario(const std::string& text, const std::string& source_name)
     fail("{}:{}: TOML syntax error: {}", source_name, e.source().begin.line, e.description());
   }
   Reader reader{io::scenario_schema(), source_name, {}, {}};
+  // include = ["fragment.toml", ...]: each fragment's keys are read first (paths relative to this
+  // file), then this file's, whose values override the fragments' (e.g. a calibrated [contact]
+  // fragment with one value changed for a study).
+  if (const toml::node* inc = table.get("include")) {
+    std::vector<std::string> files;
+    if (auto one = inc->value_exact<std::string>())
+      files.push_back(*one);
+    else if (const auto* arr = inc->as_array())
+      for (const auto& e : *arr) {
+        auto f = e.value_exact<std::string>();
+        if (!f)
+          fail("{}:{}: key 'include': expected file names", source_name, inc->source().begin.line);
+        files.push_back(*f);
+      }
+    else
+      fail("{}:{}: key 'include': expected a file name or an array of them", source_name,
+           inc->source().begin.line);
+    const auto dir = std::filesystem::path(source_name).parent_path();
+    for (const auto& f : files) {
+      const auto path = std::filesystem::path(f).is_absolute() ? std::filesystem::path(f) : dir / f;
+      std::ifstream in(path, std::ios::binary);
+      if (!in)
+        fail("{}:{}: key 'include': cannot read '{}'", source_name, inc->source().begin.line,
+             path.string());
+      std::ostringstream text_in;
+      text_in << in.rdbuf();
+      toml::table sub;
+      try {
+        sub = toml::parse(text_in.str(), path.string());
+      } catch (const toml::parse_error& e) {
+        fail("{}:{}: TOML syntax error: {}", path.string(), e.source().begin.line, e.description());
+      }
+      if (sub.contains("include"))
+        fail("{}: an included file may not include others", path.string());
+      reader.file = path.string();
+      reader.read_table(sub, "");
+    }
+    reader.file = source_name;
+    table.erase("include");
+  }
   reader.read_table(table, "");
   reader.fill_defaults();
   return convert(reader, text);

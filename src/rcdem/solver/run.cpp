@@ -186,6 +186,8 @@ RunSummary run_scenario(const Scenario& sc, const std::filesystem::path& out,
   j["specimen"] = io::specimen_summary(sc, sim.specimen());
   j["seconds"] = wall;
   io::write_file_atomically(out / "summary.json", j.dump(2) + "\n");
+  r.history_columns = history.columns();
+  r.history_rows = history.data();
   if (!quiet)
     fmt::print(stderr,
                "stopped by {} after {} steps (t = {:.4g} s); peak load {:.6g} N at {:.4g} m; "

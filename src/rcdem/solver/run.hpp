@@ -18,6 +18,8 @@ struct RunSummary {
   Real time = 0.0;
   Energy energy;
   nlohmann::ordered_json json;
+  std::vector<std::string> history_columns;
+  std::vector<std::vector<double>> history_rows;
 };
 
 // Checks that the scenario describes a run that can end: plates, a control plate where a rule

@@ -1,0 +1,219 @@
+#include "rcdem/calibration/calibrate.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+#include "rcdem/core/error.hpp"
+#include "rcdem/core/progress.hpp"
+#include "rcdem/io/atomic_file.hpp"
+
+namespace rcdem {
+
+namespace fs = std::filesystem;
+
+MacroProperties parse_macro_properties(const std::string& text) {
+  MacroProperties m;
+  bool seen[4] = {false, false, false, false};
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    const auto eq = item.find('=');
+    if (eq == std::string::npos)
+      fail("--target: '{}' is not NAME=VALUE (expected E=..,nu=..,sigma_c=..,sigma_t=.. in SI)",
+           item);
+    const std::string name = item.substr(0, eq);
+    char* end = nullptr;
+    const double v = std::strtod(item.c_str() + eq + 1, &end);
+    if (end == item.c_str() + eq + 1 || *end != '\0' || !std::isfinite(v) || v <= 0.0)
+      fail("--target: '{}' needs a positive number in SI units", item);
+    if (name == "E")
+      m.E = v, seen[0] = true;
+    else if (name == "nu")
+      m.nu = v, seen[1] = true;
+    else if (name == "sigma_c")
+      m.sigma_c = v, seen[2] = true;
+    else if (name == "sigma_t")
+      m.sigma_t = v, seen[3] = true;
+    else
+      fail("--target: unknown property '{}' (expected E, nu, sigma_c, sigma_t)", name);
+  }
+  if (!(seen[0] && seen[1] && seen[2] && seen[3]))
+    fail(
+        "--target needs all of E, nu, sigma_c and sigma_t, e.g. "
+        "E=34.2e9,nu=0.15,sigma_c=91.2e6,sigma_t=4.0e6");
+  if (m.nu >= 0.25)
+    fail("--target: nu = {} cannot be reached by a particle model (nu < 0.25)", m.nu);
+  return m;
+}
+
+namespace {
+
+Real lattice_nu(Real a) { return (1.0 - a) / (4.0 + a); }
+Real lattice_e(Real a) { return (2.0 + 3.0 * a) / (4.0 + a); }
+
+nlohmann::ordered_json to_json(const ContactParameters& p) {
+  return {{"E_bar", p.E_bar}, {"alpha", p.alpha}, {"mu_c", p.mu_c}, {"sigma_nt", p.sigma_nt},
+          {"tau", p.tau},     {"G_fn", p.G_fn},   {"G_fs", p.G_fs}};
+}
+
+nlohmann::ordered_json to_json(const MacroProperties& m) {
+  return {{"E", m.E},
+          {"nu", m.nu},
+          {"sigma_c", m.sigma_c},
+          {"sigma_t", m.sigma_t},
+          {"sigma_c_over_sigma_t", m.sigma_t > 0 ? m.sigma_c / m.sigma_t : 0.0}};
+}
+
+Real worst_misfit(const MacroProperties& m, const MacroProperties& t) {
+  return std::max({std::abs(m.E / t.E - 1), std::abs(m.nu / t.nu - 1),
+                   std::abs(m.sigma_c / t.sigma_c - 1), std::abs(m.sigma_t / t.sigma_t - 1)});
+}
+
+std::string contact_fragment(const ContactParameters& p, const std::string& note) {
+  return fmt::format(
+      "# Contact parameters written by `rcdem calibrate` ({}).\n"
+      "# Use them from a scenario with: include = [\"<path to this file>\"]\n"
+      "[contact]\n"
+      "E_bar = {:.6g}      # Pa\n"
+      "alpha = {:.6g}\n"
+      "mu_c = {:.6g}\n"
+      "sigma_nt = {:.6g}   # Pa\n"
+      "tau = {:.6g}        # Pa\n"
+      "G_fn = {:.6g}       # J/m^2\n"
+      "G_fs = {:.6g}       # J/m^2\n",
+      note, p.E_bar, p.alpha, p.mu_c, p.sigma_nt, p.tau, p.G_fn, p.G_fs);
+}
+
+struct Pair {
+  UniaxialResult compression, tension;
+  MacroProperties macro() const {
+    return {compression.E, compression.nu, compression.strength, tension.strength};
+  }
+};
+
+Pair run_pair(const Scenario& base, const UniaxialOptions& opt, const fs::path& dir) {
+  Pair p;
+  if (!Progress::quiet_default())
+    fmt::print(stderr, "== compression test in {}\n", (dir / "compression").string());
+  p.compression = run_uniaxial(base, UniaxialMode::Compression, opt, dir / "compression");
+  if (!Progress::quiet_default())
+    fmt::print(stderr, "== tension test in {}\n", (dir / "tension").string());
+  p.tension = run_uniaxial(base, UniaxialMode::Tension, opt, dir / "tension");
+  return p;
+}
+
+nlohmann::ordered_json pair_json(const Pair& p) {
+  nlohmann::ordered_json j = to_json(p.macro());
+  j["strain_at_peak_compression"] = p.compression.strain_at_peak;
+  j["strain_at_peak_tension"] = p.tension.strain_at_peak;
+  j["nu_at_40_percent_compression"] = p.compression.nu_at_40;
+  j["nu_from_tension"] = p.tension.nu;
+  j["E_from_tension"] = p.tension.E;
+  j["kinetic_over_strain_at_peak_compression"] = p.compression.kinetic_over_strain_at_peak;
+  j["kinetic_over_strain_at_peak_tension"] = p.tension.kinetic_over_strain_at_peak;
+  j["energy_balance_error_compression"] = p.compression.energy_balance_error;
+  j["energy_balance_error_tension"] = p.tension.energy_balance_error;
+  return j;
+}
+
+void plot(const fs::path& out) {
+  // Figure 7 as PNG; the figure is a convenience, the CSVs are the result.
+  const char* candidates[] = {"tools/plot_calibration.py",
+                              RCDEM_SOURCE_DIR "/tools/plot_calibration.py"};
+  for (const char* script : candidates) {
+    if (!fs::exists(script)) continue;
+    const std::string cmd =
+        fmt::format("/usr/bin/python3 '{}' '{}' >/dev/null 2>&1", script, out.string());
+    if (std::system(cmd.c_str()) != 0)
+      fmt::print(stderr, "warning: plotting failed ({}); the curves are in the CSV files\n", cmd);
+    return;
+  }
+}
+
+}  // namespace
+
+ContactParameters update_parameters(const ContactParameters& p, const MacroProperties& m,
+                                    const MacroProperties& t) {
+  ContactParameters q = p;
+  // nu: the measured/closed-form ratio is assumed to hold at the new alpha.
+  const Real x = t.nu / (m.nu / lattice_nu(p.alpha));
+  q.alpha = std::clamp((1.0 - 4.0 * x) / (1.0 + x), 0.02, 1.0);
+  q.E_bar = p.E_bar * (t.E / m.E) * lattice_e(p.alpha) / lattice_e(q.alpha);
+  q.sigma_nt = p.sigma_nt * t.sigma_t / m.sigma_t;
+  q.tau = p.tau * t.sigma_c / m.sigma_c;
+  return q;
+}
+
+CalibrationResult calibrate(const Scenario& base_in, const CalibrationOptions& opt,
+                            const fs::path& out) {
+  Scenario base = base_in;
+  nlohmann::ordered_json j;
+  j["cube_size_m"] = opt.uniaxial.size;
+  j["rate_factor"] = opt.uniaxial.rate_factor;
+  j["seed"] = base.generation.seed;
+  CalibrationResult result;
+  Pair pair;
+  if (!opt.target) {
+    pair = run_pair(base, opt.uniaxial, out);
+    result.parameters = base.contact;
+    result.measured = pair.macro();
+    result.iterations = 1;
+    j["parameters"] = to_json(base.contact);
+    j["measured"] = pair_json(pair);
+  } else {
+    const MacroProperties& t = *opt.target;
+    j["target"] = to_json(t);
+    j["tolerance"] = opt.tolerance;
+    nlohmann::ordered_json history = nlohmann::json::array();
+    for (int it = 0; it < opt.max_iterations; ++it) {
+      pair = run_pair(base, opt.uniaxial, out / fmt::format("iteration_{:02d}", it));
+      const MacroProperties m = pair.macro();
+      const Real misfit = worst_misfit(m, t);
+      history.push_back({{"parameters", to_json(base.contact)},
+                         {"measured", pair_json(pair)},
+                         {"worst_misfit", misfit}});
+      if (!Progress::quiet_default())
+        fmt::print(stderr,
+                   "iteration {}: E = {:.4g} GPa, nu = {:.4f}, sigma_c = {:.4g} MPa, sigma_t = "
+                   "{:.4g} MPa; worst misfit {:.2f}%\n",
+                   it, m.E / 1e9, m.nu, m.sigma_c / 1e6, m.sigma_t / 1e6, 100 * misfit);
+      result.parameters = base.contact;
+      result.measured = m;
+      result.iterations = it + 1;
+      if (misfit <= opt.tolerance) {
+        result.converged = true;
+        break;
+      }
+      base.contact = update_parameters(base.contact, m, t);
+    }
+    j["iterations"] = history;
+    j["converged"] = result.converged;
+    j["parameters"] = to_json(result.parameters);
+    j["measured"] = pair_json(pair);
+  }
+  j["E"] = result.measured.E;
+  j["nu"] = result.measured.nu;
+  j["sigma_c"] = result.measured.sigma_c;
+  j["sigma_t"] = result.measured.sigma_t;
+  io::write_file_atomically(out / "calibration.json", j.dump(2) + "\n");
+  io::write_file_atomically(
+      out / "calibrated_contact.toml",
+      contact_fragment(result.parameters,
+                       opt.target ? (result.converged ? "converged to the target" : "NOT converged")
+                                  : "the parameters as given"));
+  // The final pair's curves beside the JSON, for the plot and for users.
+  for (const auto* r : {&pair.compression, &pair.tension}) {
+    std::string csv = "strain,stress_Pa,lateral_strain,damaged_fraction,broken_fraction\n";
+    for (const auto& p : r->curve)
+      csv += fmt::format("{:.8g},{:.8g},{:.8g},{:.6g},{:.6g}\n", p.strain, p.stress, p.lateral,
+                         p.damaged, p.broken);
+    io::write_file_atomically(out / fmt::format("curve_{}.csv", mode_name(r->mode)), csv);
+  }
+  plot(out);
+  return result;
+}
+
+}  // namespace rcdem

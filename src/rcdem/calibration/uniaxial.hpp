@@ -1,0 +1,58 @@
+#pragma once
+// The uniaxial compression and tension tests of the calibration (paper 3, Figure 7; SPEC 9), set
+// up on a cube from a base scenario (its generation and contact parameters), run, and read:
+// E (secant at 40% of the peak), nu (lateral over axial strain at 10% of the peak, where the
+// response is still elastic), the strength, and the
+// stress-strain and damage-strain curves.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "rcdem/io/scenario.hpp"
+
+namespace rcdem {
+
+enum class UniaxialMode { Compression, Tension };
+
+struct UniaxialOptions {
+  Real size = 0.160;             // cube side [m]
+  Real rate_factor = 1.0;        // multiplies the loading rates below (quasi-static checks)
+  Real compression_rate = 1.25;  // axial strain rate [1/s]
+  Real tension_rate = 0.125;     // [1/s]
+  std::int64_t snapshots = 4;
+};
+
+struct CurvePoint {
+  Real strain;   // axial, from the face displacements (gauges), positive in the test's sense
+  Real stress;   // load / loaded area [Pa], positive in the test's sense
+  Real lateral;  // mean lateral strain (x and y)
+  Real damaged;  // fraction of local points with 0 < D < 1
+  Real broken;   // fraction with D = 1
+};
+
+struct UniaxialResult {
+  UniaxialMode mode;
+  Real strength = 0.0;  // peak stress [Pa]
+  Real strain_at_peak = 0.0;
+  Real E = 0.0;         // secant modulus at 40% of the peak [Pa]
+  Real nu = 0.0;        // -lateral / axial strain at 10% of the peak (elastic range)
+  Real nu_at_40 = 0.0;  // the same ratio at 40% of the peak (includes microcracking)
+  Real kinetic_over_strain_at_peak = 0.0;
+  Real energy_balance_error = 0.0;
+  std::vector<CurvePoint> curve;
+};
+
+// The test's scenario: the base's specimen generation and contact parameters on a cube, with
+// platens (frictionless for compression, glued for tension), loading and stop rules.
+Scenario uniaxial_scenario(const Scenario& base, UniaxialMode mode, const UniaxialOptions& opt);
+
+// Runs the test in `dir` (created) and reads its curve.
+UniaxialResult run_uniaxial(const Scenario& base, UniaxialMode mode, const UniaxialOptions& opt,
+                            const std::filesystem::path& dir);
+
+// Reads E, nu and the strength from a curve (exposed for tests).
+void analyse_curve(UniaxialResult& r);
+
+const char* mode_name(UniaxialMode m);
+
+}  // namespace rcdem
