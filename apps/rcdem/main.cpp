@@ -74,7 +74,6 @@ int run(const fs::path& scenario_path, fs::path out, bool force) {
   if (out.empty()) out = default_output(scenario_path);
   const bool created = rcdem::io::prepare_output_directory(out, force);
   try {
-    rcdem::io::write_file_atomically(out / "scenario.toml", scenario.text);
     rcdem::run_scenario(scenario, out);
   } catch (...) {
     rcdem::io::remove_if_created_and_empty(out, created);

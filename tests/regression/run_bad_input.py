@@ -44,8 +44,21 @@ class Case:
     expects: list[str]
     names: list[str]  # the message must contain at least one of these
     file_based: bool = True
+    # The subcommand and any options after the scenario ('# command: run' in the file).
+    command: list[str] = dataclasses.field(default_factory=lambda: ["generate"])
     # Extra check after the run; returns a failure reason or None.
     after: Optional[Callable[[], Optional[str]]] = None
+
+
+def read_command(path: Path) -> list[str]:
+    with open(path, "rb") as fh:
+        for raw in fh:
+            line = raw.decode("utf-8", errors="replace").strip()
+            if line.startswith("# command:"):
+                return line[len("# command:"):].split()
+            if line and not line.startswith("#"):
+                break
+    return ["generate"]
 
 
 def read_expects(path: Path) -> list[str]:
@@ -80,7 +93,7 @@ def run_case(rcdem: str, case: Case, workdir: Path) -> tuple[bool, str]:
     env.setdefault("OMP_NUM_THREADS", "2")
     try:
         proc = subprocess.run(
-            [rcdem, "generate", case.scenario, "-o", case.output],
+            [rcdem, case.command[0], case.scenario, "-o", case.output, *case.command[1:]],
             cwd=workdir, env=env, stdin=subprocess.DEVNULL, capture_output=True,
             timeout=TIMEOUT_S, preexec_fn=limit_memory)
     except subprocess.TimeoutExpired:
@@ -125,7 +138,11 @@ def file_cases(bad_dir: Path, tmp: Path) -> list[Case]:
         out = tmp / f"{path.stem}.out" / "out"
         out.parent.mkdir()
         cases.append(Case(name=path.stem, scenario=str(path), output=str(out),
-                          expects=read_expects(path), names=[str(path), path.name]))
+                          expects=read_expects(path),
+                          # An error in a command-line option names the option, not the file.
+                          names=[str(path), path.name] + [w.split("=")[0] for w in
+                                                          read_command(path)[1:] if w.startswith("--")],
+                          command=read_command(path)))
     return cases
 
 

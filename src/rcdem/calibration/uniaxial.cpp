@@ -36,7 +36,7 @@ Scenario uniaxial_scenario(const Scenario& base, UniaxialMode mode, const Uniaxi
   s.plates = {bottom, top};
   s.control_plate = "top";
   s.stop = StopSettings{};
-  s.stop.load_drop = compression ? 0.6 : 0.2;
+  s.stop.load_drop = opt.stop_after_peak > 0.0 ? opt.stop_after_peak : (compression ? 0.6 : 0.3);
   s.stop.displacement = (compression ? 0.0075 : 0.00125) * opt.size;
   s.output.snapshots = opt.snapshots;
   s.output.history_rows = 1500;

@@ -20,6 +20,9 @@ struct UniaxialOptions {
   Real compression_rate = 1.25;  // axial strain rate [1/s]
   Real tension_rate = 0.125;     // [1/s]
   std::int64_t snapshots = 4;
+  // Stop once the load has fallen below this fraction of the peak; 0 = the full post-peak curve
+  // (60% in compression, 30% in tension). A search needs only the peak, E and nu.
+  Real stop_after_peak = 0.0;
 };
 
 struct CurvePoint {

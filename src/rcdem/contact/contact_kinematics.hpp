@@ -9,6 +9,8 @@
 // the incremental form (1)-(2) reads literally, drifts by |d| theta^2 / 2 per step under a
 // rotation of theta per step (1e-5 m over a quarter turn in 1000 steps: fifteen times the elastic
 // limit of a Table 2 contact). The law still receives increments: du = u_J(now) - u_J(before).
+#include <cmath>
+
 #include "rcdem/core/types.hpp"
 
 namespace rcdem {
@@ -19,9 +21,9 @@ struct PointKinematics {
   Vec3 us;        // total shear displacement, in the plane normal to n
 };
 
-inline PointKinematics point_kinematics(const Vec3& p0, const Vec3& xa, const Vec3& xa0,
-                                        const Eigen::Matrix3d& ra, const Vec3& xb, const Vec3& xb0,
-                                        const Eigen::Matrix3d& rb, const Vec3& n) {
+[[gnu::always_inline]] inline PointKinematics point_kinematics(
+    const Vec3& p0, const Vec3& xa, const Vec3& xa0, const Eigen::Matrix3d& ra, const Vec3& xb,
+    const Vec3& xb0, const Eigen::Matrix3d& rb, const Vec3& n) {
   const Vec3 pa = xa + ra * (p0 - xa0);
   const Vec3 pb = xb + rb * (p0 - xb0);
   const Vec3 u = pb - pa;
@@ -40,14 +42,14 @@ struct PlaneRotation {
   Vec3 twist;  // 0.5 (w_A + w_B).n dt n
   Vec3 n;      // the new normal
 
-  Vec3 apply(const Vec3& v) const {
-    const Real len = v.norm();
-    if (len == 0.0) return v;
+  [[gnu::always_inline]] Vec3 apply(const Vec3& v) const {
+    const Real len2 = v.squaredNorm();
+    if (len2 == 0.0) return v;
     Vec3 r = v - v.cross(tilt);
     r -= r.cross(twist);
     r -= r.dot(n) * n;
-    const Real rl = r.norm();
-    return rl > 0.0 ? Vec3(r * (len / rl)) : Vec3::Zero();
+    const Real r2 = r.squaredNorm();
+    return r2 > 0.0 ? Vec3(r * std::sqrt(len2 / r2)) : Vec3::Zero();
   }
 };
 

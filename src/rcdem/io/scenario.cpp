@@ -30,9 +30,9 @@ struct Reader {
     return fmt::format("{}:{}", file, node.source().begin.line);
   }
 
-  [[noreturn]] void bad_value(const toml::node& node, const KeyDecl& decl,
-                              const std::string& got) const {
-    fail("{}: key '{}': expected {}, got {}", where(node), decl.path,
+  [[noreturn]] void bad_value(const toml::node& node, const KeyDecl& decl, const std::string& got,
+                              const std::string& path = "") const {
+    fail("{}: key '{}': expected {}, got {}", where(node), path.empty() ? decl.path : path,
          Schema::describe_expected(decl), got);
   }
 
@@ -71,45 +71,46 @@ struct Reader {
     switch (decl.type) {
       case KeyType::Real: {
         const auto v = number(node);
-        if (!v) bad_value(node, decl, describe_node(node));
-        if (!in_range(*v, decl.range)) bad_value(node, decl, fmt::format("{}", *v));
+        if (!v) bad_value(node, decl, describe_node(node), path);
+        if (!in_range(*v, decl.range)) bad_value(node, decl, fmt::format("{}", *v), path);
         value = *v;
         break;
       }
       case KeyType::Integer: {
         const auto v = node.value_exact<std::int64_t>();
-        if (!v) bad_value(node, decl, describe_node(node));
+        if (!v) bad_value(node, decl, describe_node(node), path);
         if (!in_range(static_cast<double>(*v), decl.range))
-          bad_value(node, decl, fmt::format("{}", *v));
+          bad_value(node, decl, fmt::format("{}", *v), path);
         value = *v;
         break;
       }
       case KeyType::Boolean: {
         const auto v = node.value_exact<bool>();
-        if (!v) bad_value(node, decl, describe_node(node));
+        if (!v) bad_value(node, decl, describe_node(node), path);
         value = *v;
         break;
       }
       case KeyType::String: {
         const auto v = node.value_exact<std::string>();
-        if (!v) bad_value(node, decl, describe_node(node));
+        if (!v) bad_value(node, decl, describe_node(node), path);
         if (!decl.choices.empty() &&
             std::find(decl.choices.begin(), decl.choices.end(), *v) == decl.choices.end())
-          bad_value(node, decl, describe_node(node));
+          bad_value(node, decl, describe_node(node), path);
         value = *v;
         break;
       }
       case KeyType::RealArray: {
         const auto* array = node.as_array();
-        if (!array) bad_value(node, decl, describe_node(node));
+        if (!array) bad_value(node, decl, describe_node(node), path);
         if (static_cast<int>(array->size()) != decl.array_size &&
             !(array->empty() && decl.default_value))
-          bad_value(node, decl, fmt::format("an array of {} elements", array->size()));
+          bad_value(node, decl, fmt::format("an array of {} elements", array->size()), path);
         std::vector<double> v;
         for (const auto& element : *array) {
           const auto x = number(element);
-          if (!x) bad_value(node, decl, describe_node(element) + " in the array");
-          if (!in_range(*x, decl.range)) bad_value(node, decl, fmt::format("{} in the array", *x));
+          if (!x) bad_value(node, decl, describe_node(element) + " in the array", path);
+          if (!in_range(*x, decl.range))
+            bad_value(node, decl, fmt::format("{} in the array", *x), path);
           v.push_back(*x);
         }
         value = std::move(v);
@@ -126,7 +127,7 @@ struct Reader {
       const std::string path = prefix.empty() ? name : prefix + "." + name;
       const KeyDecl* decl = schema.find_key(path);
       if (node.is_table()) {
-        if (decl) bad_value(node, *decl, "a table");
+        if (decl) bad_value(node, *decl, "a table", path);
         if (!schema.is_section(path)) unknown(node, path, prefix);
         for (const auto& sec : schema.sections())
           if (sec.path.find('*') != std::string::npos && io::path_matches(sec.path, path)) {
@@ -306,6 +307,16 @@ Scenario convert(Reader& r, const std::string& text) {
           "{}: key '{}.extent': expected [u_min, u_max, v_min, v_max] with u_min < u_max and "
           "v_min < v_max",
           r.at(inst + ".extent"), inst);
+    if (!p.extent.empty()) {
+      const int u = p.axis == 0 ? 1 : 0, v = p.axis == 2 ? 1 : 2;
+      if (p.extent[1] <= 0.0 || p.extent[0] >= s.specimen.size[u] || p.extent[3] <= 0.0 ||
+          p.extent[2] >= s.specimen.size[v])
+        fail(
+            "{}: key '{}.extent': the rectangle [{}, {}] x [{}, {}] m misses the specimen's "
+            "face [0, {}] x [0, {}] m",
+            r.at(inst + ".extent"), inst, p.extent[0], p.extent[1], p.extent[2], p.extent[3],
+            s.specimen.size[u], s.specimen.size[v]);
+    }
     p.velocity = r.real(inst + ".velocity");
     p.ramp_time = r.real(inst + ".ramp_time");
     p.glued = r.boolean(inst + ".glued");

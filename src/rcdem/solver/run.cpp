@@ -64,9 +64,10 @@ RunSummary run_scenario(const Scenario& sc, const std::filesystem::path& out,
                         const std::function<void(const Simulation&)>& on_step) {
   validate_run(sc);
   const auto wall_start = std::chrono::steady_clock::now();
-  Specimen specimen = build_specimen(sc);
-  io::write_particles_vtu(out / "particles_initial.vtu", specimen, sc.output.binary_vtu);
-  Simulation sim(sc, std::move(specimen));
+  Simulation sim(sc, build_specimen(sc));
+  // Written only once the set-up has passed every check, so a refused run leaves nothing.
+  io::write_file_atomically(out / "scenario.toml", sc.text);
+  io::write_particles_vtu(out / "particles_initial.vtu", sim.specimen(), sc.output.binary_vtu);
   const bool quiet = Progress::quiet_default();
   if (!quiet)
     fmt::print(stderr,

@@ -10,7 +10,7 @@ namespace rcdem {
 
 struct Elastic {
   // Same contract as BilinearSoftening::update; never dissipates.
-  LawResult update(const LocalPointConstants& c, LocalPointState& s, Real dun,
+  [[gnu::always_inline]] LawResult update(const LocalPointConstants& c, LocalPointState& s, Real dun,
                    const Vec3& dus) const {
     s.un += dun;
     s.us += dus;
