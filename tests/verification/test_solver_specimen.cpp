@@ -287,6 +287,38 @@ TEST(SolverSpecimen, FourTimesStableStepThrowsInstability) {
   std::printf("[4x stable step] threw after %d steps: %s\n", steps, message.c_str());
 }
 
+// 5c. The stable estimate sqrt(m / sum k) sums k_n only, so with k_s = alpha k_n > k_n the shear
+// springs, stiffer than the normal ones, are left out. The schema admits any alpha >= 0 and
+// dt_safety up to 0.5 ("the stable limit"); with alpha = 30 such an accepted scenario blows up.
+// FAILS at present: "numerical instability at step 10". (The estimate is otherwise conservative
+// by a factor of about 2.5, which hides the omission up to alpha of about 10.)
+TEST(SolverSpecimen, StableEstimateCoversShearSprings) {
+  const Scenario sc = parse_scenario(R"(
+[specimen]
+shape = "box"
+size = [0.025, 0.025, 0.025]
+[generation]
+seed = 3
+relaxation_iterations = 100
+[contact]
+law = "EL"
+alpha = 30.0
+[solver]
+damping = 0.0
+dt_safety = 0.5
+)",
+                                     "stiff_shear.toml");
+  Simulation sim(sc, build_specimen(sc));
+  randomize_velocities(sim.bodies(), 5);
+  int steps = 0;
+  try {
+    for (; steps < 1000; ++steps) sim.step();
+  } catch (const Error& e) {
+    ADD_FAILURE() << "after " << steps << " steps: " << e.what();
+  }
+  EXPECT_EQ(steps, 1000);
+}
+
 namespace {
 
 // Generalised forces (force, torque per body) of the contacts and plates at displacements q
