@@ -88,8 +88,9 @@ EnergyTrace run_undamped(Simulation& sim, int steps) {
   Bodies& b = sim.bodies();
   EnergyTrace t;
   for (Index i = 0; i < b.size(); ++i)
-    t.true_initial_kinetic += 0.5 * b.mass[i] * b.velocity[i].squaredNorm() +
-                              0.5 * b.angular_velocity[i].dot(b.inertia[i].cwiseProduct(b.angular_velocity[i]));
+    t.true_initial_kinetic +=
+        0.5 * b.mass[i] * b.velocity[i].squaredNorm() +
+        0.5 * b.angular_velocity[i].dot(b.inertia[i].cwiseProduct(b.angular_velocity[i]));
   const Vec3 p0 = momentum(b);
   const Real p_scale = [&] {
     Real s = 0;
@@ -159,9 +160,9 @@ TEST(SolverSpecimen, UndampedElasticSpecimenConservesEnergyAndMomentum) {
       "[undamped] %lld particles, %lld contacts, dt = %.4g s (stable estimate %.4g s): leap-frog "
       "invariant band %.3g, ledger strain+kinetic band %.3g, momentum drift %.3g; 10^4 steps in "
       "%.2f s\n",
-      (long long)sim.specimen().particles.size(), (long long)sim.specimen().contacts.contact_count(),
-      sim.time_step(), sim.stable_time_step(), t.leapfrog_band, t.ledger_band, t.momentum_drift,
-      seconds);
+      (long long)sim.specimen().particles.size(),
+      (long long)sim.specimen().contacts.contact_count(), sim.time_step(), sim.stable_time_step(),
+      t.leapfrog_band, t.ledger_band, t.momentum_drift, seconds);
 }
 
 // 3'. The acceptance criterion as the ledger reports it: Energy::strain + Energy::kinetic within
@@ -171,7 +172,7 @@ TEST(SolverSpecimen, UndampedElasticSpecimenConservesEnergyAndMomentum) {
 // half steps, 1/2 (K(n-1/2) + K(n+1/2)), which exceeds the leap-frog invariant's
 // 1/2 m v(n-1/2).v(n+1/2) by 1/4 m |a dt|^2, i.e. by (omega dt)^2 / 2 of each mode's strain
 // energy: an oscillation of O((omega dt)^2), not a drift, while the invariant itself holds to
-// 1.2e-7 (test above). At dt_safety = 0.1 the ledger's band is 0.063%, at 0.5 1.5%.
+// 4e-8 (test above). At dt_safety = 0.1 the ledger's band is 0.063%, at 0.5 1.5%.
 TEST(SolverSpecimen, LedgerStrainPlusKineticWithinTenthOfAPercentAtReportedStep) {
   const Scenario sc = elastic_box(0.03);
   Simulation sim(sc, build_specimen(sc));
@@ -204,7 +205,8 @@ TEST(SolverSpecimen, HomogeneousStrainGivesUniformContactStrains) {
   for (const bool rotated : {false, true}) {
     Bodies b = bodies_from_particles(sp.particles, 2400.0, 1.0);
     for (Index i = 0; i < b.size(); ++i) {
-      const Vec3 strained = centre + (Eigen::Matrix3d::Identity() + eps) * (b.position0[i] - centre);
+      const Vec3 strained =
+          centre + (Eigen::Matrix3d::Identity() + eps) * (b.position0[i] - centre);
       b.position[i] = rotated ? Vec3(centre + R * (strained - centre)) : strained;
       b.orientation[i] = rotated ? R : Quat::Identity();
     }
@@ -227,8 +229,8 @@ TEST(SolverSpecimen, HomogeneousStrainGivesUniformContactStrains) {
       Vec3 f = Vec3::Zero();
       for (Index m = net.point_begin[c]; m < net.point_begin[c + 1]; ++m) {
         const LocalPointState& s = cs.point[m];
-        worst_exact = std::max({worst_exact, std::abs(s.un - un) / scale,
-                                std::abs(s.us.norm() - us) / scale});
+        worst_exact = std::max(
+            {worst_exact, std::abs(s.un - un) / scale, std::abs(s.us.norm() - us) / scale});
         worst_linear = std::max({worst_linear, std::abs(s.un - un_lin) / scale,
                                  std::abs(s.us.norm() - us_lin) / scale});
         const LocalPointConstants& k = net.constants[m];
@@ -240,10 +242,11 @@ TEST(SolverSpecimen, HomogeneousStrainGivesUniformContactStrains) {
     EXPECT_LT(worst_exact, 1e-9);
     EXPECT_LT(worst_linear, 2 * eps_norm);  // second-order terms only
     EXPECT_LT(worst_force, 1e-12);
-    std::printf("[homogeneous strain%s] %lld contacts: worst |error| / (|eps| d0): exact %.3g, "
-                "first order %.3g (|eps| = %.3g)\n",
-                rotated ? ", rotated 63 deg" : "", (long long)net.contact_count(), worst_exact,
-                worst_linear, eps_norm);
+    std::printf(
+        "[homogeneous strain%s] %lld contacts: worst |error| / (|eps| d0): exact %.3g, "
+        "first order %.3g (|eps| = %.3g)\n",
+        rotated ? ", rotated 63 deg" : "", (long long)net.contact_count(), worst_exact,
+        worst_linear, eps_norm);
   }
 }
 
@@ -259,11 +262,10 @@ TEST(SolverSpecimen, StableAtReportedTimeStep) {
   Real worst = 0;
   const Bodies& b = sim.bodies();
   for (Index i = 0; i < b.size(); ++i) {
-    // Drift of the whole specimen (momentum) removed: the relative motion stays below a micron.
     ASSERT_TRUE(b.position[i].allFinite());
     worst = std::max(worst, (b.position[i] - b.position0[i]).norm());
   }
-  // Rigid drift at ~1 mm/s for 2000 steps of ~0.1 us: ~0.2 um; nothing runs away.
+  // Moving at ~1 mm/s for 2000 steps of ~0.1 us covers ~0.2 um: nothing runs away.
   EXPECT_LT(worst, 1e-5);
 }
 
@@ -290,7 +292,7 @@ TEST(SolverSpecimen, FourTimesStableStepThrowsInstability) {
 // 5c. The stable estimate sqrt(m / sum k) sums k_n only, so with k_s = alpha k_n > k_n the shear
 // springs, stiffer than the normal ones, are left out. The schema admits any alpha >= 0 and
 // dt_safety up to 0.5 ("the stable limit"); with alpha = 30 such an accepted scenario blows up.
-// FAILS at present: "numerical instability at step 10". (The estimate is otherwise conservative
+// FAILS at present: "numerical instability at step 11". (The estimate is otherwise conservative
 // by a factor of about 2.5, which hides the omission up to alpha of about 10.)
 TEST(SolverSpecimen, StableEstimateCoversShearSprings) {
   const Scenario sc = parse_scenario(R"(
@@ -336,8 +338,8 @@ struct StaticModel {
     for (Index i = 0; i < b.size(); ++i) {
       b.position[i] = b0.position0[i] + q.segment<3>(6 * i);
       const Vec3 r = q.segment<3>(6 * i + 3);
-      b.orientation[i] = r.norm() > 0 ? Quat(Eigen::AngleAxis<Real>(r.norm(), r.normalized()))
-                                      : Quat::Identity();
+      b.orientation[i] =
+          r.norm() > 0 ? Quat(Eigen::AngleAxis<Real>(r.norm(), r.normalized())) : Quat::Identity();
     }
     ContactState cs;
     cs.init(*net, b0.position0);
@@ -374,7 +376,8 @@ struct StaticModel {
 TEST(SolverSpecimen, GluedPlateTensionReachesStaticSolution) {
   const Real size = 0.03, strain = 1e-4;
   const auto scenario = [&](Real v, Real ramp) {
-    return elastic_box(size, fmt::format(R"(
+    return elastic_box(size,
+                       fmt::format(R"(
 [plates.bottom]
 face = "z-"
 glued = true
@@ -386,7 +389,7 @@ ramp_time = {}
 [loading]
 control_plate = "top"
 )",
-                                         v, ramp),
+                                   v, ramp),
                        0.7);
   };
   const Specimen sp = build_specimen(scenario(1.0, 0.0));
@@ -406,11 +409,12 @@ control_plate = "top"
 
   Plate& top = sim.plates()[1];
   const Plate& bottom = sim.plates()[0];
-  Real balance_at_load_end = 0;
+  Real reaction_mismatch_at_load_end = 0;
   for (int s = 0; s < load_steps + hold_steps; ++s) {
     if (s == load_steps) {
       EXPECT_NEAR(top.displacement / delta, 1.0, 1e-3);
-      balance_at_load_end = std::abs(top.force.z() + bottom.force.z()) / std::abs(top.force.z());
+      reaction_mismatch_at_load_end =
+          std::abs(top.force.z() + bottom.force.z()) / std::abs(top.force.z());
       top.velocity = 0.0;  // hold
     }
     sim.step();
@@ -421,11 +425,12 @@ control_plate = "top"
   EXPECT_GT(F, 0.0);
   EXPECT_NEAR(-top.force.z() / F, 1.0, 1e-15);  // tension: the specimen pulls the plate down
   EXPECT_LT(std::abs(top.force.z() + bottom.force.z()), 0.01 * F);
-  EXPECT_LT(balance_at_load_end, 0.01);  // quasi-static already while loading
+  EXPECT_LT(reaction_mismatch_at_load_end, 0.01);  // quasi-static already while loading
   EXPECT_LT(e.balance_error(), 0.01);
   EXPECT_NEAR(e.external_work / (e.strain + e.kinetic + e.dissipated()), 1.0, 0.01);
   EXPECT_LT(e.kinetic, 1e-6 * e.strain);
-  EXPECT_NEAR(e.strain / (0.5 * F * u), 1.0, 0.01);  // Clapeyron, linear elasticity
+  // Clapeyron (linear elasticity); the geometric nonlinearity is O(strain) = 1e-4.
+  EXPECT_NEAR(e.strain / (0.5 * F * u), 1.0, 10 * strain);
 
   // The static solution.
   const Index n = 6 * sim.bodies().size();
@@ -444,24 +449,25 @@ control_plate = "top"
   const Eigen::VectorXd residual = model.forces(q, u, &reaction_static);
   // K is the tangent at q = 0; the residual at q is the geometric nonlinearity, O(strain).
   EXPECT_LT(residual.norm(), 10 * strain * model.forces(zero, u).norm());
-  EXPECT_NEAR(top.force.z() / reaction_static, 1.0, 0.01);
+  EXPECT_NEAR(top.force.z() / reaction_static, 1.0, 10 * strain);
   Real worst_position = 0;
   for (Index i = 0; i < sim.bodies().size(); ++i)
     worst_position = std::max(
         worst_position,
         (sim.bodies().position[i] - sim.bodies().position0[i] - q.segment<3>(6 * i)).norm());
-  EXPECT_LT(worst_position, 0.01 * u);
+  EXPECT_LT(worst_position, 10 * strain * u);
   // The macroscopic modulus, loosely: Table 2's E_bar = 48.7 GPa gives E = 34.2 GPa in the paper.
   const Real E = (F / (size * size)) / (u / size);
   EXPECT_GT(E / 48.7e9, 0.4);
   EXPECT_LT(E / 48.7e9, 0.9);
   std::printf(
       "[glued tension] %lld particles, %lld plate contacts: F = %.5g N at u = %.4g m; static "
-      "F = %.5g N (ratio %.3g); |F_top + F_bottom| / F = %.3g (end of loading %.3g); balance "
+      "F = %.5g N (ratio - 1 = %.3g); |F_top + F_bottom| / F = %.3g (end of loading %.3g); balance "
       "error %.3g; strain / (F u / 2) = %.6f; worst |x - x_static| / u = %.3g; K asymmetry %.3g; "
       "E = %.4g GPa (%.3f E_bar)\n",
-      (long long)sim.bodies().size(), (long long)sim.plate_contacts().size(), F, u, -reaction_static,
-      top.force.z() / reaction_static, std::abs(top.force.z() + bottom.force.z()) / F,
-      balance_at_load_end, e.balance_error(), e.strain / (0.5 * F * u), worst_position / u,
-      asymmetry, E / 1e9, E / 48.7e9);
+      (long long)sim.bodies().size(), (long long)sim.plate_contacts().size(), F, u,
+      -reaction_static, top.force.z() / reaction_static - 1,
+      std::abs(top.force.z() + bottom.force.z()) / F, reaction_mismatch_at_load_end,
+      e.balance_error(), e.strain / (0.5 * F * u), worst_position / u, asymmetry, E / 1e9,
+      E / 48.7e9);
 }

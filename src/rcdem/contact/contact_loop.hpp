@@ -10,9 +10,13 @@
 
 namespace rcdem {
 
+// With `anchor0` (steel-concrete interface contacts, SPEC 8), B is a cylinder and the normal is the
+// component of (x_A - anchor) perpendicular to the cylinder's current axis, pointing from A to the
+// axis, anchor being the interface sphere's centre carried by the cylinder: the sphere
+// discretisation then adds no artificial interlock along the bar.
 template <typename Law>
 void evaluate_contacts(const Law& law, const ContactNetwork& net, const Bodies& bodies,
-                       ContactState& cs, Real dt) {
+                       ContactState& cs, Real dt, const Vec3* anchor0 = nullptr) {
   const Vec3* x = bodies.position.data();
   const Vec3* x0 = bodies.position0.data();
   const Vec3* w = bodies.angular_velocity.data();
@@ -20,7 +24,15 @@ void evaluate_contacts(const Law& law, const ContactNetwork& net, const Bodies& 
   parallel_for(net.contact_count(), [&](Index c) {
     const Index a = net.particle_a[c];
     const Index b = net.particle_b[c];
-    const Vec3 n = (x[b] - x[a]).normalized();
+    Vec3 n;
+    if (anchor0) {
+      const Vec3 axis = q[b] * (bodies.orientation0[b] * Vec3::UnitZ());
+      const Vec3 anchor = x[b] + q[b] * (anchor0[c] - x0[b]);
+      const Vec3 d = anchor - x[a];
+      n = (d - d.dot(axis) * axis).normalized();
+    } else {
+      n = (x[b] - x[a]).normalized();
+    }
     const PlaneRotation rot{cs.normal[c].cross(n), (0.5 * dt * (w[a] + w[b]).dot(n)) * n, n};
     cs.normal[c] = n;
     const Eigen::Matrix3d ra = q[a].toRotationMatrix();

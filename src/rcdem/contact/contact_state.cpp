@@ -2,12 +2,20 @@
 
 namespace rcdem {
 
-void ContactState::init(const ContactNetwork& net, const std::vector<Vec3>& x) {
+void ContactState::init(const ContactNetwork& net, const std::vector<Vec3>& x,
+                        const std::vector<Vec3>* anchor0, const std::vector<Vec3>* axis0) {
   const auto nc = static_cast<std::size_t>(net.contact_count());
   point.assign(static_cast<std::size_t>(net.point_count()), LocalPointState{});
   normal.resize(nc);
-  for (std::size_t c = 0; c < nc; ++c)
-    normal[c] = (x[net.particle_b[c]] - x[net.particle_a[c]]).normalized();
+  for (std::size_t c = 0; c < nc; ++c) {
+    if (anchor0) {
+      const Vec3& axis = (*axis0)[c];
+      const Vec3 d = (*anchor0)[c] - x[net.particle_a[c]];
+      normal[c] = (d - d.dot(axis) * axis).normalized();
+    } else {
+      normal[c] = (x[net.particle_b[c]] - x[net.particle_a[c]]).normalized();
+    }
+  }
   force_b.assign(nc, Vec3::Zero());
   torque_b.assign(nc, Vec3::Zero());
   torque_a.assign(nc, Vec3::Zero());

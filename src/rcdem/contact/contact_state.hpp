@@ -22,7 +22,9 @@ struct ContactState {
   std::vector<Real> dissipated_damage;    // during this step [J]
   std::vector<Real> dissipated_friction;  // during this step [J]
 
-  void init(const ContactNetwork& net, const std::vector<Vec3>& positions);
+  // Normals at t = 0: centre to centre, or (with anchors) perpendicular to the bar's axis.
+  void init(const ContactNetwork& net, const std::vector<Vec3>& positions,
+            const std::vector<Vec3>* anchor0 = nullptr, const std::vector<Vec3>* axis0 = nullptr);
 };
 
 }  // namespace rcdem

@@ -68,6 +68,19 @@ struct PlateSettings {
   Real friction = 0.0;
 };
 
+enum class InterfaceLaw { EL, NL_A, NL_B };
+
+struct BarSettings {
+  std::string name;
+  Vec3 start = Vec3::Zero(), end = Vec3::Zero();
+  Real diameter = 0.0;
+  Real cylinder_length = 0.032;
+  Real E = 200.0e9, nu = 0.3, f_y = 0.0, density = 7850.0;
+  InterfaceLaw interface = InterfaceLaw::NL_B;
+  Real sphere_spacing = 0.0;  // 0 = D / 2
+  Real spacing() const { return sphere_spacing > 0.0 ? sphere_spacing : 0.5 * diameter; }
+};
+
 struct StopSettings {
   Real displacement = 0.0;
   Real load_drop = 0.0;
@@ -92,6 +105,7 @@ struct Scenario {
   ConcreteLaw law = ConcreteLaw::BilinearSoftening;
   SolverSettings solver;
   std::vector<PlateSettings> plates;  // in the order given
+  std::vector<BarSettings> bars;      // in the order given
   std::string control_plate;
   StopSettings stop;
   OutputSettings output;

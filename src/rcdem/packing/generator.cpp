@@ -7,6 +7,7 @@
 #include "rcdem/core/parallel.hpp"
 #include "rcdem/core/progress.hpp"
 #include "rcdem/core/rng.hpp"
+#include "rcdem/packing/bar_exclusion.hpp"
 #include "rcdem/packing/cell_grid.hpp"
 #include "rcdem/packing/grading.hpp"
 
@@ -101,9 +102,13 @@ Vec3 boundary_push(const Vec3& p, Real r, const SpecimenGeometry& g) {
 }  // namespace
 
 Particles generate_packing(const GenerationSettings& s, const SpecimenGeometry& g,
-                           PackingReport* report) {
+                           PackingReport* report, const std::vector<BarSettings>& bar_settings) {
   Rng rng(s.seed);
-  const Real volume = g.volume();
+  const std::vector<BarAxis> bars = bar_axes(bar_settings);
+  Real bar_volume = 0.0;
+  for (const auto& b : bar_settings)
+    bar_volume += 0.25 * kPi * b.diameter * b.diameter * (b.end - b.start).norm();
+  const Real volume = g.volume() - bar_volume;  // the concrete's volume
 
   const DiameterDistribution aggregate{s.aggregate_grading, s.aggregate_d_min, s.aggregate_d_max,
                                        s.fuller_exponent};
@@ -131,7 +136,7 @@ Particles generate_packing(const GenerationSettings& s, const SpecimenGeometry& 
     for (int attempt = 0; attempt < 1000; ++attempt) {
       Vec3 p;
       for (int a = 0; a < 3; ++a) p[a] = rng.uniform(g.lo[a] + f * r, g.hi[a] - f * r);
-      if (g.distance_to_boundary(p) >= f * r && !g.in_notch(p)) {
+      if (g.distance_to_boundary(p) >= f * r && !g.in_notch(p) && !near_bar(p, f * r, bars)) {
         particles.add(p, r, kind);
         return;
       }
@@ -159,7 +164,7 @@ Particles generate_packing(const GenerationSettings& s, const SpecimenGeometry& 
     const Vec3* x = particles.position.data();
     const Real* rad = particles.radius.data();
     parallel_for(count, [&](Index i) {
-      Vec3 m = boundary_push(x[i], rad[i], g);
+      Vec3 m = boundary_push(x[i], rad[i], g) + bar_push(x[i], rad[i], bars);
       grid.for_each_near(x[i], [&](Index j) {
         if (j == i) return;
         const Vec3 d = x[i] - x[j];
@@ -174,7 +179,8 @@ Particles generate_packing(const GenerationSettings& s, const SpecimenGeometry& 
       move[i] = len > cap ? Vec3(v * (cap / len)) : v;
     });
     parallel_for(count, [&](Index i) {
-      particles.position[i] = clamp_inside(x[i] + move[i], g, f * rad[i]);
+      particles.position[i] =
+          clamp_inside(keep_off_bars(x[i] + move[i], f * rad[i], bars), g, f * rad[i]);
     });
     progress.update(static_cast<double>(it + 1) / s.relaxation_iterations);
   }
@@ -185,13 +191,16 @@ Particles generate_packing(const GenerationSettings& s, const SpecimenGeometry& 
     rep.aggregate_volume = agg_volume;
     rep.sphere_volume = 0.0;
     for (Real r : particles.radius) rep.sphere_volume += sphere_volume(r);
-    rep.porosity = 1.0 - rep.sphere_volume / volume;
+    rep.porosity = 1.0 - rep.sphere_volume / volume;  // of the concrete
     grid.build(particles.position, g.lo, g.hi, 2.0 * r_max);
     Real min_pair = std::numeric_limits<Real>::infinity();
     Real min_face = std::numeric_limits<Real>::infinity();
+    Real min_bar = std::numeric_limits<Real>::infinity();
     for (Index i = 0; i < count; ++i) {
       const Vec3& xi = particles.position[i];
       min_face = std::min(min_face, g.distance_to_boundary(xi) / particles.radius[i]);
+      for (const auto& bar : bars)
+        min_bar = std::min(min_bar, ((xi - bar.closest(xi)).norm() - bar.radius) / particles.radius[i]);
       grid.for_each_near(xi, [&](Index j) {
         if (j <= i) return;
         const Real d = (xi - particles.position[j]).norm();
@@ -200,6 +209,7 @@ Particles generate_packing(const GenerationSettings& s, const SpecimenGeometry& 
     }
     rep.min_distance_ratio = min_pair;
     rep.min_face_ratio = min_face;
+    rep.min_bar_ratio = min_bar;
   }
   return particles;
 }

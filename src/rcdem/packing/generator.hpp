@@ -13,9 +13,13 @@ struct PackingReport {
   Real porosity = 0.0;            // 1 - sphere_volume / specimen volume
   Real min_distance_ratio = 0.0;  // min over pairs of |x_i - x_j| / min(r_i, r_j)
   Real min_face_ratio = 0.0;      // min over particles of distance to the boundary / r_i
+  Real min_bar_ratio = 0.0;       // min over particles of (distance to a bar axis - D/2) / r_i
 };
 
+// Concrete particles (aggregate, mortar), kept `bars` clear (SPEC 8): the bars' volume is not
+// concrete, and no concrete centre lies within D/2 + min_distance_factor r of a bar's axis.
 Particles generate_packing(const GenerationSettings& settings, const SpecimenGeometry& geometry,
-                           PackingReport* report = nullptr);
+                           PackingReport* report = nullptr,
+                           const std::vector<BarSettings>& bars = {});
 
 }  // namespace rcdem

@@ -10,6 +10,7 @@ Bodies bodies_from_particles(const Particles& p, Real density, Real mass_scaling
   b.velocity.assign(n, Vec3::Zero());
   b.angular_velocity.assign(n, Vec3::Zero());
   b.orientation.assign(n, Quat::Identity());
+  b.orientation0.assign(n, Quat::Identity());
   b.mass.resize(n);
   b.inertia.resize(n);
   for (std::size_t i = 0; i < n; ++i) {

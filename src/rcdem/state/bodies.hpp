@@ -15,7 +15,8 @@ struct Bodies {
   std::vector<Vec3> position, position0;  // centre of mass now and at t = 0
   std::vector<Vec3> velocity;             // at the half step (leap-frog)
   std::vector<Vec3> angular_velocity;     // world frame, at the half step
-  std::vector<Quat> orientation;          // rotation from t = 0 (identity at t = 0)
+  std::vector<Quat> orientation;          // rotation since t = 0 (identity at t = 0)
+  std::vector<Quat> orientation0;         // body frame -> world at t = 0 (cylinders: z = axis)
   std::vector<Real> mass;
   std::vector<Vec3> inertia;        // principal moments in the body frame
   std::vector<Vec3> force, torque;  // gathered each step

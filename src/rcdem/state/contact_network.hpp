@@ -28,6 +28,16 @@ struct ContactNetwork {
   Index points_of(Index c) const { return point_begin[c + 1] - point_begin[c]; }
 };
 
+// The steel-concrete interface of one bar (paper 2.6, SPEC 8): one contact per concrete particle,
+// between that particle (particle_a, a body) and the cylinder carrying the nearest interface
+// sphere (particle_b, the cylinder's body index). anchor0 is that sphere's centre at t = 0: the
+// contact normal is taken perpendicular to the cylinder's axis through it.
+struct InterfaceContacts {
+  int bar = 0;
+  ContactNetwork net;
+  std::vector<Vec3> anchor0;
+};
+
 // The faces of the particles' Voronoi cells that lie on the specimen's outer faces (the cells are
 // clipped by them). Rigid plates act on the particles through these faces (SPEC 6).
 struct BoundaryFaces {

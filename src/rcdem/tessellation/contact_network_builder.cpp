@@ -18,7 +18,8 @@ ContactNetwork build_contact_network(const Particles& p, const CellComplex& cc,
       const Index b = cc.face_neighbour[f];
       if (b < 0) {
         // voro++ numbers the container walls -1..-6 for x-, x+, y-, y+, z-, z+.
-        if (boundary) {
+        // Plates act on the concrete; the bars' spheres are inside it.
+        if (boundary && p.kind[a] != ParticleKind::Steel) {
           const std::span<const Vec3> raw(
               cc.vertices.data() + cc.vertex_begin[f],
               static_cast<std::size_t>(cc.vertex_begin[f + 1] - cc.vertex_begin[f]));
@@ -33,6 +34,8 @@ ContactNetwork build_contact_network(const Particles& p, const CellComplex& cc,
         continue;
       }
       if (b < a) continue;  // the pair was taken from b's side
+      // Steel interface spheres: their facets are interface contacts, built apart (SPEC 8).
+      if (p.kind[a] == ParticleKind::Steel || p.kind[b] == ParticleKind::Steel) continue;
       const Vec3& xa = p.position[a];
       const Vec3& xb = p.position[b];
       if (g.segment_crosses_notch(xa, xb)) {
