@@ -17,8 +17,19 @@ nlohmann::ordered_json specimen_summary(const Scenario& scenario, const Specimen
                     {"mortar", p.count(ParticleKind::Mortar)},
                     {"steel", p.count(ParticleKind::Steel)},
                     {"total", p.size()}};
-  j["contacts"] = c.contact_count();
-  j["local_points"] = c.point_count();
+  Index interface_contacts = 0, interface_points = 0, cylinders = 0;
+  for (const auto& ic : s.interfaces) {
+    interface_contacts += ic.net.contact_count();
+    interface_points += ic.net.point_count();
+  }
+  for (const auto& b : s.bars) cylinders += static_cast<Index>(b.cylinders.size());
+  // All contacts, the steel-concrete interface included (as the paper counts them).
+  j["contacts"] = c.contact_count() + interface_contacts;
+  j["local_points"] = c.point_count() + interface_points;
+  j["concrete_contacts"] = c.contact_count();
+  j["interface_contacts"] = interface_contacts;
+  j["bars"] = s.bars.size();
+  j["cylinders"] = cylinders;
   // The paper counts contacts per particle as contacts / particles (153,165 / 23,855 = 6.4).
   j["contacts_per_particle"] = n > 0 ? static_cast<Real>(c.contact_count()) / n : 0.0;
   j["local_points_per_contact"] = c.contact_count() > 0 ? static_cast<Real>(c.point_count()) /
@@ -31,6 +42,7 @@ nlohmann::ordered_json specimen_summary(const Scenario& scenario, const Specimen
   j["cell_volume_sum"] = cell_sum;
   j["min_centre_distance_over_radius"] = s.packing.min_distance_ratio;
   j["min_face_distance_over_radius"] = s.packing.min_face_ratio;
+  if (!s.bars.empty()) j["min_bar_clearance_over_radius"] = s.packing.min_bar_ratio;
   j["facets_cut_by_notch"] = s.network.facets_cut_by_notch;
   j["degenerate_facets_dropped"] = s.network.degenerate_facets;
   return j;

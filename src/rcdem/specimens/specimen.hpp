@@ -3,6 +3,8 @@
 // measured on the way.
 #include "rcdem/io/scenario.hpp"
 #include "rcdem/packing/generator.hpp"
+#include "rcdem/reinforcement/bar_builder.hpp"
+#include "rcdem/tessellation/interface_network_builder.hpp"
 #include "rcdem/specimens/specimen_geometry.hpp"
 #include "rcdem/state/contact_network.hpp"
 #include "rcdem/state/particles.hpp"
@@ -10,10 +12,16 @@
 
 namespace rcdem {
 
+// Particles are the concrete ones [0, concrete_count) then the bars' interface spheres; the solver's
+// bodies are the concrete particles (same indices) then the bars' cylinders, bar by bar.
 struct Specimen {
   SpecimenGeometry geometry;
   Particles particles;
-  ContactNetwork contacts;
+  Index concrete_count = 0;
+  ContactNetwork contacts;                    // concrete-concrete
+  std::vector<Bar> bars;                      // SPEC 7
+  SteelSpheres steel;                         // the interface spheres (SPEC 8)
+  std::vector<InterfaceContacts> interfaces;  // one per bar
   BoundaryFaces boundary;
   PackingReport packing;
   NetworkReport network;
