@@ -337,20 +337,24 @@ Scenario convert(Reader& r, const std::string& text) {
     b.f_y = r.real(inst + ".f_y");
     b.density = r.real(inst + ".density");
     const std::string law = r.string(inst + ".interface");
-    b.interface = law == "EL" ? InterfaceLaw::EL : law == "NL-A" ? InterfaceLaw::NL_A : InterfaceLaw::NL_B;
+    b.interface = law == "EL"     ? InterfaceLaw::EL
+                  : law == "NL-A" ? InterfaceLaw::NL_A
+                                  : InterfaceLaw::NL_B;
     b.sphere_spacing = r.real(inst + ".sphere_spacing");
     const Real length = (b.end - b.start).norm();
     if (length < 2.0 * b.diameter)
-      fail("{}: bar '{}' is {} m long: expected at least two diameters ({} m) between start and end",
-           r.at(inst + ".end"), b.name, length, 2.0 * b.diameter);
+      fail(
+          "{}: bar '{}' is {} m long: expected at least two diameters ({} m) between start and end",
+          r.at(inst + ".end"), b.name, length, 2.0 * b.diameter);
     // The bar and its cover of one radius must lie inside the specimen.
     for (const auto* p : {&b.start, &b.end})
       for (int ax = 0; ax < 3; ++ax)
         if ((*p)[ax] < 0.5 * b.diameter || (*p)[ax] > s.specimen.size[ax] - 0.5 * b.diameter)
-          fail("{}: bar '{}': its {} ({}, {}, {}) m is not inside the specimen with half a diameter "
-               "of cover",
-               r.at(inst + (p == &b.start ? ".start" : ".end")), b.name,
-               p == &b.start ? "start" : "end", (*p)[0], (*p)[1], (*p)[2]);
+          fail(
+              "{}: bar '{}': its {} ({}, {}, {}) m is not inside the specimen with half a diameter "
+              "of cover",
+              r.at(inst + (p == &b.start ? ".start" : ".end")), b.name,
+              p == &b.start ? "start" : "end", (*p)[0], (*p)[1], (*p)[2]);
     s.bars.push_back(b);
   }
   s.control_plate = r.string("loading.control_plate");

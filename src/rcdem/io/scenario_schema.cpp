@@ -173,9 +173,11 @@ Schema build() {
               "Stop after this many steps."));
 
   s.section("bars", "Steel bars (paper 2.5-2.6, SPEC 7-8): one [bars.NAME] table per bar.");
-  s.section("bars.*", "A straight steel bar: a chain of rigid cylinders with lumped interaction nodes.");
+  s.section("bars.*",
+            "A straight steel bar: a chain of rigid cylinders with lumped interaction nodes.");
   {
-    KeyDecl k = typed("bars.*.start", KeyType::RealArray, Value{}, Range{}, "First end of the bar's axis [x, y, z].");
+    KeyDecl k = typed("bars.*.start", KeyType::RealArray, Value{}, Range{},
+                      "First end of the bar's axis [x, y, z].");
     k.default_value.reset();
     k.array_size = 3;
     k.unit = "m";
@@ -188,8 +190,10 @@ Schema build() {
   s.key(positive("bars.*.cylinder_length", 0.032, "m",
                  "Target length of the rigid cylinders (the bar is cut into equal ones)."));
   s.key(positive("bars.*.E", 200.0e9, "Pa", "Young's modulus of the steel."));
-  s.key(real("bars.*.nu", 0.3, Range{0.0, 0.5, false, true}, "", "Poisson's ratio of the steel (G = E / (2 (1 + nu)))."));
-  s.key(positive("bars.*.f_y", std::nullopt, "Pa", "Yield stress: the axial force plateaus at f_y A."));
+  s.key(real("bars.*.nu", 0.3, Range{0.0, 0.5, false, true}, "",
+             "Poisson's ratio of the steel (G = E / (2 (1 + nu)))."));
+  s.key(positive("bars.*.f_y", std::nullopt, "Pa",
+                 "Yield stress: the axial force plateaus at f_y A."));
   s.key(positive("bars.*.density", 7850.0, "kg/m^3", "Density of the steel."));
   s.key(choice("bars.*.interface", std::string("NL-B"), {"EL", "NL-A", "NL-B"},
                "Steel-concrete interface law: 'EL' elastic, 'NL-A' BL with the concrete's "

@@ -200,7 +200,8 @@ Particles generate_packing(const GenerationSettings& s, const SpecimenGeometry& 
       const Vec3& xi = particles.position[i];
       min_face = std::min(min_face, g.distance_to_boundary(xi) / particles.radius[i]);
       for (const auto& bar : bars)
-        min_bar = std::min(min_bar, ((xi - bar.closest(xi)).norm() - bar.radius) / particles.radius[i]);
+        min_bar =
+            std::min(min_bar, ((xi - bar.closest(xi)).norm() - bar.radius) / particles.radius[i]);
       grid.for_each_near(xi, [&](Index j) {
         if (j <= i) return;
         const Real d = (xi - particles.position[j]).norm();

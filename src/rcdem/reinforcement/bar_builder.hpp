@@ -15,7 +15,7 @@ inline constexpr Real kDefaultCylinderLength = 0.032;  // paper 3: 32 mm cylinde
 struct Bar {
   Real diameter;
   SteelMaterial steel;
-  std::vector<CylinderGeometry> cylinders;   // from the start point to the end point
+  std::vector<CylinderGeometry> cylinders;  // from the start point to the end point
   std::vector<std::array<Index, 2>> nodes;  // (A, B) = (i, i + 1), indices into `cylinders`
 };
 

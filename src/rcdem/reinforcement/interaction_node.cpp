@@ -21,14 +21,14 @@ Vec3 rotation_log(Quat d) {
 
 // The node's current frame, and the relative rotation of B's copy of it against A's.
 struct NodeFrame {
-  Quat frame;      // node frame -> world; z = a_c (8)
-  Vec3 rotation;   // total relative rotation of B against A, node-frame components
+  Quat frame;     // node frame -> world; z = a_c (8)
+  Vec3 rotation;  // total relative rotation of B against A, node-frame components
   NodeGeometry geometry;
-  Vec3 gap;        // end of B minus end of A (world)
+  Vec3 gap;  // start of B minus end of A (world)
 };
 
-NodeFrame node_frame(const InteractionNode& node, const Vec3& x_a, const Quat& q_a,
-                     const Vec3& x_b, const Quat& q_b) {
+NodeFrame node_frame(const InteractionNode& node, const Vec3& x_a, const Quat& q_a, const Vec3& x_b,
+                     const Quat& q_b) {
   // Each cylinder carries a copy of the t = 0 node frame; their relative rotation is the node's
   // total deformation rotation d. The frame half-way along d is then turned onto (8), from which
   // it differs only at second order (when bending and twist combine).
@@ -53,8 +53,8 @@ NodeFrame node_frame(const InteractionNode& node, const Vec3& x_a, const Quat& q
 NodeStiffness node_stiffness(Real length_a, Real length_b, Real diameter,
                              const SteelMaterial& steel) {
   if (!(length_a > 0.0) || !(length_b > 0.0) || !(diameter > 0.0))
-    fail("bar node: cylinder lengths ({} m, {} m) and diameter ({} m) must be positive",
-         length_a, length_b, diameter);
+    fail("bar node: cylinder lengths ({} m, {} m) and diameter ({} m) must be positive", length_a,
+         length_b, diameter);
   const Real l = 0.5 * (length_a + length_b);
   const Real area = kPi * diameter * diameter / 4.0;
   const Real second_moment = kPi * std::pow(diameter, 4) / 64.0;

@@ -62,14 +62,14 @@ InteractionNode make_interaction_node(const CylinderGeometry& a, const Quat& ori
 
 // History of one node, in the node frame (z = a_c). Starts zeroed.
 struct NodeState {
-  Real axial_force = 0.0;                   // N, tension positive
-  Vec3 shear_force = Vec3::Zero();          // V, (x, y, 0)
-  Vec3 bending_moment = Vec3::Zero();       // M_b, (x, y, 0)
-  Real twisting_moment = 0.0;               // M_t
-  Real plastic_elongation = 0.0;            // accumulated signed plastic axial displacement [m]
-  bool yielded = false;                     // has reached the plateau at least once
-  Vec3 displacement = Vec3::Zero();         // total relative displacement at the last update
-  Vec3 rotation = Vec3::Zero();             // total relative rotation vector at the last update
+  Real axial_force = 0.0;              // N, tension positive
+  Vec3 shear_force = Vec3::Zero();     // V, (x, y, 0)
+  Vec3 bending_moment = Vec3::Zero();  // M_b, (x, y, 0)
+  Real twisting_moment = 0.0;          // M_t
+  Real plastic_elongation = 0.0;       // accumulated signed plastic axial displacement [m]
+  bool yielded = false;                // has reached the plateau at least once
+  Vec3 displacement = Vec3::Zero();    // total relative displacement at the last update
+  Vec3 rotation = Vec3::Zero();        // total relative rotation vector at the last update
 };
 
 struct NodeGeometry {

@@ -36,10 +36,9 @@ namespace rcdem {
 // w = R I^-1 R^T L for a body whose principal axes are turned by `orientation * principal_axes0`
 // (principal_axes0: the principal frame at the reference orientation; identity when the
 // orientation itself maps the principal frame to the world).
-[[gnu::always_inline]] inline Vec3 angular_velocity(const Quat& orientation,
-                                                    const Vec3& angular_momentum,
-                                                    const Vec3& principal_inertia,
-                                                    const Quat& principal_axes0 = Quat::Identity()) {
+[[gnu::always_inline]] inline Vec3 angular_velocity(
+    const Quat& orientation, const Vec3& angular_momentum, const Vec3& principal_inertia,
+    const Quat& principal_axes0 = Quat::Identity()) {
   const Quat axes = orientation * principal_axes0;
   return axes * (axes.conjugate() * angular_momentum).cwiseQuotient(principal_inertia);
 }
@@ -60,8 +59,8 @@ inline Vec3 advance_rotation(Quat& orientation, Vec3& angular_momentum,
     // Contraction factor ~ |w| dt / 2 x (inertia anisotropy): a handful of passes at stable
     // time steps; the cap only guards against a runaway step, which the solver reports anyway.
     for (int pass = 0; pass < 32; ++pass) {
-      const Vec3 next = angular_velocity(rotation_exp(0.5 * dt * w) * axes, angular_momentum,
-                                         principal_inertia);
+      const Vec3 next =
+          angular_velocity(rotation_exp(0.5 * dt * w) * axes, angular_momentum, principal_inertia);
       const Real change2 = (next - w).squaredNorm();
       w = next;
       if (change2 <= 1e-28 * w.squaredNorm()) break;  // the next pass would move w far less

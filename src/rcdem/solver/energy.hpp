@@ -15,8 +15,9 @@ struct Energy {
   Real damage = 0.0;    // dissipated by contact damage (cumulative)
   Real friction = 0.0;  // dissipated by friction at contacts and plates (cumulative)
   Real damping = 0.0;   // removed by local damping (cumulative)
+  Real plastic = 0.0;   // dissipated by the bars' yielding (cumulative)
 
-  Real dissipated() const { return damage + friction + damping; }
+  Real dissipated() const { return damage + friction + damping + plastic; }
   Real stored_and_lost() const { return strain + kinetic + dissipated(); }
   // |W - (E_s + E_k + D)| relative to the larger of W and the right-hand side.
   Real balance_error() const {

@@ -185,7 +185,8 @@ RunSummary run_scenario(const Scenario& sc, const std::filesystem::path& out,
   j["broken_points"] = sim.broken_points();
   j["local_points"] = sim.specimen().contacts.point_count();
   j["specimen"] = io::specimen_summary(sc, sim.specimen());
-  const double loop = std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
+  const double loop =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
   j["loop_seconds"] = loop;
   j["steps_per_second"] = loop > 0.0 ? static_cast<double>(r.steps) / loop : 0.0;
   j["seconds"] = wall;

@@ -6,17 +6,57 @@
 #include "rcdem/contact/contact_loop.hpp"
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/parallel.hpp"
+#include "rcdem/reinforcement/rigid_rotation.hpp"
+#include "rcdem/tessellation/interface_network_builder.hpp"
 
 namespace rcdem {
 
 Simulation::Simulation(const Scenario& sc, Specimen specimen)
     : specimen_(std::move(specimen)),
-      bodies_(
-          bodies_from_particles(specimen_.particles, sc.solver.density, sc.solver.mass_scaling)),
+      bodies_(bodies_from_particles(specimen_.particles, sc.solver.density, sc.solver.mass_scaling,
+                                    specimen_.concrete())),
       law_kind_(sc.law),
       bilinear_{sc.contact.sigma_nt, sc.contact.tau, sc.contact.G_fn, sc.contact.G_fs,
                 sc.contact.mu_c},
       damping_(sc.solver.damping) {
+  // The bars' cylinders: exact mass and inertia (SPEC 7), principal frame z along the axis.
+  for (const Bar& bar : specimen_.bars)
+    for (const auto& cyl : bar.cylinders) {
+      const CylinderInertia in =
+          solid_cylinder_inertia(bar.diameter, cyl.length, bar.steel.density);
+      add_body(bodies_, cyl.centre, sc.solver.mass_scaling * in.mass,
+               sc.solver.mass_scaling * in.principal_inertia, orientation_for_axis(cyl.axis),
+               0.5 * bar.diameter);
+    }
+  // Interaction nodes, built with the cylinders' orientations at t = 0 as stored here (identity:
+  // rotations since t = 0).
+  Index first = specimen_.concrete();
+  for (std::size_t k = 0; k < specimen_.bars.size(); ++k) {
+    const Bar& bar = specimen_.bars[k];
+    const std::vector<Quat> reference(bar.cylinders.size(), Quat::Identity());
+    const std::vector<InteractionNode> nodes = make_bar_nodes(bar, reference);
+    for (std::size_t j = 0; j < nodes.size(); ++j) {
+      nodes_.push_back(nodes[j]);
+      node_refs_.push_back({first + bar.nodes[j][0], first + bar.nodes[j][1], static_cast<int>(k)});
+    }
+    first += static_cast<Index>(bar.cylinders.size());
+  }
+  node_states_.assign(nodes_.size(), NodeState{});
+  node_forces_.assign(nodes_.size(), NodeForces{});
+  // The interface contacts of each bar, with its law (paper 3: EL, NL-A, NL-B).
+  for (std::size_t k = 0; k < specimen_.interfaces.size(); ++k) {
+    const InterfaceContacts& ic = specimen_.interfaces[k];
+    std::vector<Vec3> axes(ic.anchor0.size());
+    for (std::size_t c = 0; c < axes.size(); ++c)
+      axes[c] = bodies_.orientation0[ic.net.particle_b[c]] * Vec3::UnitZ();
+    ContactState state;
+    state.init(ic.net, bodies_.position, &ic.anchor0, &axes);
+    interface_states_.push_back(std::move(state));
+    const InterfaceLaw law = sc.bars[k].interface;
+    const ContactParameters p = interface_parameters(sc.contact, law);
+    interface_law_.push_back(law);
+    interface_bl_.push_back(BilinearSoftening{p.sigma_nt, p.tau, p.G_fn, p.G_fs, p.mu_c});
+  }
   contacts_.init(specimen_.contacts, bodies_.position);
   body_contacts_ = BodyContacts::build(specimen_.contacts, bodies_.size());
   plates_ = make_plates(sc.plates, specimen_.geometry);
@@ -40,25 +80,36 @@ Simulation::Simulation(const Scenario& sc, Specimen specimen)
 }
 
 void Simulation::compute_stable_time_step() {
-  const ContactNetwork& net = specimen_.contacts;
   const auto n = static_cast<std::size_t>(bodies_.size());
   std::vector<Real> k(n, 0.0), kr(n, 0.0);
-  for (Index c = 0; c < net.contact_count(); ++c) {
-    const Index a = net.particle_a[c], b = net.particle_b[c];
-    for (Index m = net.point_begin[c]; m < net.point_begin[c + 1]; ++m) {
-      const Real kn = net.constants[m].kn;
-      k[a] += kn;
-      k[b] += kn;
-      kr[a] += kn * (net.point_position0[m] - bodies_.position0[a]).squaredNorm();
-      kr[b] += kn * (net.point_position0[m] - bodies_.position0[b]).squaredNorm();
+  // The stiffer of the normal and shear springs (alpha may exceed 1).
+  const auto add_network = [&](const ContactNetwork& nw) {
+    for (Index c = 0; c < nw.contact_count(); ++c) {
+      const Index a = nw.particle_a[c], b = nw.particle_b[c];
+      for (Index m = nw.point_begin[c]; m < nw.point_begin[c + 1]; ++m) {
+        const Real kk = std::max(nw.constants[m].kn, nw.constants[m].ks);
+        k[a] += kk;
+        k[b] += kk;
+        kr[a] += kk * (nw.point_position0[m] - bodies_.position0[a]).squaredNorm();
+        kr[b] += kk * (nw.point_position0[m] - bodies_.position0[b]).squaredNorm();
+      }
     }
-  }
+  };
+  add_network(specimen_.contacts);
+  for (const auto& ic : specimen_.interfaces) add_network(ic.net);
   for (Index j = 0; j < plate_contacts_.size(); ++j) {
     const Index i = plate_contacts_.particle[j];
-    const Real kn = plate_contacts_.constants[j].kn;
-    k[i] += kn;
-    kr[i] += kn * (plate_contacts_.point0[j] - bodies_.position0[i]).squaredNorm();
+    const Real kk = std::max(plate_contacts_.constants[j].kn, plate_contacts_.constants[j].ks);
+    k[i] += kk;
+    kr[i] += kk * (plate_contacts_.point0[j] - bodies_.position0[i]).squaredNorm();
   }
+  for (std::size_t j = 0; j < nodes_.size(); ++j)
+    for (const bool for_b : {false, true}) {
+      const Index i = for_b ? node_refs_[j].body_b : node_refs_[j].body_a;
+      const NodeBodyStiffness ns = node_body_stiffness(nodes_[j], for_b);
+      k[i] += ns.translation;
+      kr[i] += std::max(ns.rotation_transverse, ns.rotation_axial);
+    }
   Real dt = std::numeric_limits<Real>::infinity();
   for (std::size_t i = 0; i < n; ++i) {
     if (k[i] > 0.0) dt = std::min(dt, std::sqrt(bodies_.mass[i] / k[i]));
@@ -81,6 +132,21 @@ void Simulation::step() {
     evaluate_contacts(bilinear_, net, bodies_, contacts_, dt_);
   else
     evaluate_contacts(elastic_, net, bodies_, contacts_, dt_);
+  // Steel-concrete interfaces, bar by bar with its law; interaction nodes.
+  for (std::size_t k = 0; k < interface_states_.size(); ++k) {
+    const InterfaceContacts& ic = specimen_.interfaces[k];
+    if (interface_law_[k] == InterfaceLaw::EL)
+      evaluate_contacts(elastic_, ic.net, bodies_, interface_states_[k], dt_, ic.anchor0.data());
+    else
+      evaluate_contacts(interface_bl_[k], ic.net, bodies_, interface_states_[k], dt_,
+                        ic.anchor0.data());
+  }
+  parallel_for(static_cast<Index>(nodes_.size()), [&](Index j) {
+    const NodeRef& r = node_refs_[j];
+    node_forces_[j] = evaluate_node(nodes_[j], node_states_[j], bodies_.position[r.body_a],
+                                    bodies_.orientation[r.body_a], bodies_.position[r.body_b],
+                                    bodies_.orientation[r.body_b]);
+  });
   // 2. Plates.
   evaluate_plate_contacts(plates_, plate_contacts_, bodies_);
   // 3. Gather, 4. integrate.
@@ -98,6 +164,18 @@ void Simulation::step() {
     strain += plate_contacts_.strain_energy[j];
     friction += plate_contacts_.dissipated_friction[j];
   }
+  for (const auto& st : interface_states_)
+    for (std::size_t c = 0; c < st.strain_energy.size(); ++c) {
+      strain += st.strain_energy[c];
+      damage += st.dissipated_damage[c];
+      friction += st.dissipated_friction[c];
+    }
+  Real plastic = 0.0;
+  for (std::size_t j = 0; j < nodes_.size(); ++j) {
+    strain += node_elastic_energy(nodes_[j], node_states_[j]);
+    plastic += node_forces_[j].dissipated;
+  }
+  energy_.plastic += plastic;
   Real damping_work = 0.0, kinetic = 0.0;
   for (std::size_t i = 0; i < body_kinetic_.size(); ++i) {
     damping_work += body_damping_work_[i];
@@ -107,8 +185,7 @@ void Simulation::step() {
   energy_.damage += damage;
   energy_.friction += friction;
   energy_.damping += damping_work;
-  energy_.kinetic = 0.5 * (kinetic_half_ + kinetic);  // at the whole step
-  kinetic_half_ = kinetic;
+  energy_.kinetic = kinetic;
 
   // 5. Plates: work done over the last move (trapezoidal in the force), then the next move.
   for (std::size_t p = 0; p < plates_.size(); ++p) {
@@ -144,6 +221,24 @@ void Simulation::gather_forces() {
     bodies_.force[i] = f;
     bodies_.torque[i] = t;
   });
+  // The few interface contacts, nodes and plate contacts: serial, in a fixed order.
+  for (std::size_t k = 0; k < interface_states_.size(); ++k) {
+    const ContactNetwork& nw = specimen_.interfaces[k].net;
+    const ContactState& st = interface_states_[k];
+    for (Index c = 0; c < nw.contact_count(); ++c) {
+      bodies_.force[nw.particle_b[c]] += st.force_b[c];
+      bodies_.torque[nw.particle_b[c]] += st.torque_b[c];
+      bodies_.force[nw.particle_a[c]] -= st.force_b[c];
+      bodies_.torque[nw.particle_a[c]] += st.torque_a[c];
+    }
+  }
+  for (std::size_t j = 0; j < nodes_.size(); ++j) {
+    const NodeRef& r = node_refs_[j];
+    bodies_.force[r.body_a] += node_forces_[j].force_a;
+    bodies_.torque[r.body_a] += node_forces_[j].torque_a;
+    bodies_.force[r.body_b] += node_forces_[j].force_b;
+    bodies_.torque[r.body_b] += node_forces_[j].torque_b;
+  }
   for (Index j = 0; j < plate_contacts_.size(); ++j) {
     const Index i = plate_contacts_.particle[j];
     bodies_.force[i] += plate_contacts_.force[j];
@@ -169,23 +264,28 @@ void Simulation::integrate() {
       td[k] = alpha * std::abs(t[k]) * (w_old[k] > 0 ? 1.0 : w_old[k] < 0 ? -1.0 : 0.0);
     }
     const Vec3 v_new = v_old + (f - fd) * (dt / b.mass[i]);
-    // Spheres: isotropic inertia, so the world-frame update is exact; cylinders (SPEC 7) will
-    // need the full Euler equations.
-    const Vec3 w_new = w_old + (t - td).cwiseQuotient(b.inertia[i]) * dt;
+    // Rotation: the angular momentum takes the torque and the orientation follows by the
+    // rotational leap-frog (rigid_rotation.hpp): exact for the spheres' isotropic inertia, second
+    // order for the cylinders'.
+    // Spheres keep the angular velocity as their state (L = I w, so a caller may set w); cylinders
+    // keep the angular momentum.
+    if (b.inertia[i].x() == b.inertia[i].z()) b.angular_momentum[i] = b.inertia[i].x() * w_old;
+    const Vec3 L_old = b.angular_momentum[i];
+    const Quat q_old = b.orientation[i];
+    const Vec3 w_new = advance_rotation(b.orientation[i], b.angular_momentum[i], b.inertia[i],
+                                        t - td, dt, b.orientation0[i]);
     damping_work += fd.dot(0.5 * (v_old + v_new)) * dt + td.dot(0.5 * (w_old + w_new)) * dt;
     b.velocity[i] = v_new;
     b.angular_velocity[i] = w_new;
     const Vec3 dx = v_new * dt;
     b.position[i] += dx;
-    const Vec3 rot = w_new * dt;
-    const Real angle = rot.norm();
-    if (angle > 0.0) {
-      b.orientation[i] = Quat(Eigen::AngleAxis<Real>(angle, rot / angle)) * b.orientation[i];
-      b.orientation[i].normalize();
-    }
+    const Real angle = b.orientation[i].angularDistance(q_old);
     body_damping_work_[i] = damping_work;
-    body_kinetic_[i] =
-        0.5 * b.mass[i] * v_new.squaredNorm() + 0.5 * w_new.dot(b.inertia[i].cwiseProduct(w_new));
+    // The leap-frog's kinetic energy at the whole step, 1/2 m v(n-1/2).v(n+1/2) (and its rotational
+    // analogue): the quantity it conserves with the strain energy. The mean of the two half-step
+    // energies would oscillate by m |a dt|^2 / 4.
+    body_kinetic_[i] = 0.5 * b.mass[i] * v_old.dot(v_new) +
+                       0.25 * (L_old.dot(w_new) + b.angular_momentum[i].dot(w_old));
     // Instability: in a stable run nothing moves a twentieth of its size in one step.
     body_jumped_[i] = !(dx.norm() < 0.05 * b.radius[i]) || !(angle < 0.05);
   });
@@ -202,6 +302,25 @@ Index Simulation::damaged_points() const {
   Index n = 0;
   for (const auto& s : contacts_.point) n += (s.damage > 0.0 && s.damage < 1.0);
   return n;
+}
+
+Index Simulation::broken_interface_points() const {
+  Index n = 0;
+  for (const auto& st : interface_states_)
+    for (const auto& p : st.point) n += (p.damage >= 1.0);
+  return n;
+}
+
+Index Simulation::yielded_nodes() const {
+  Index n = 0;
+  for (const auto& s : node_states_) n += s.yielded;
+  return n;
+}
+
+Real Simulation::max_axial_force() const {
+  Real m = 0.0;
+  for (const auto& s : node_states_) m = std::max(m, std::abs(s.axial_force));
+  return m;
 }
 
 Index Simulation::broken_points() const {

@@ -8,6 +8,7 @@
 #include "rcdem/contact/laws/bilinear_softening.hpp"
 #include "rcdem/contact/laws/elastic.hpp"
 #include "rcdem/io/scenario.hpp"
+#include "rcdem/reinforcement/interaction_node.hpp"
 #include "rcdem/solver/body_contacts.hpp"
 #include "rcdem/solver/energy.hpp"
 #include "rcdem/solver/plates.hpp"
@@ -42,8 +43,23 @@ class Simulation {
   const Plate* find_plate(const std::string& name) const;
   const Energy& energy() const { return energy_; }
 
-  Index damaged_points() const;  // 0 < D < 1
-  Index broken_points() const;   // D = 1
+  // The bars (SPEC 7-8): cylinders are bodies [concrete_count, size); nodes join consecutive ones.
+  Index concrete_count() const { return specimen_.concrete(); }
+  struct NodeRef {
+    Index body_a, body_b;
+    int bar;
+  };
+  const std::vector<NodeRef>& nodes() const { return node_refs_; }
+  const std::vector<InteractionNode>& node_constants() const { return nodes_; }
+  const std::vector<NodeState>& node_states() const { return node_states_; }
+  const std::vector<NodeForces>& node_forces() const { return node_forces_; }
+  const std::vector<ContactState>& interface_contacts() const { return interface_states_; }
+  Index yielded_nodes() const;
+  Real max_axial_force() const;  // largest |N| over the nodes
+
+  Index damaged_points() const;  // 0 < D < 1, concrete contacts
+  Index broken_points() const;   // D = 1, concrete contacts
+  Index broken_interface_points() const;
 
   // Steps without the damping term or plates, for verification tests.
   void set_damping(Real alpha) { damping_ = alpha; }
@@ -62,12 +78,18 @@ class Simulation {
   ConcreteLaw law_kind_;
   BilinearSoftening bilinear_;
   Elastic elastic_;
+  std::vector<ContactState> interface_states_;   // per bar
+  std::vector<BilinearSoftening> interface_bl_;  // per bar (NL-A, NL-B)
+  std::vector<InterfaceLaw> interface_law_;      // per bar
+  std::vector<InteractionNode> nodes_;
+  std::vector<NodeRef> node_refs_;
+  std::vector<NodeState> node_states_;
+  std::vector<NodeForces> node_forces_;
   Real damping_;
   Real dt_ = 0.0, stable_dt_ = 0.0;
   Real time_ = 0.0;
   std::int64_t steps_ = 0;
   Energy energy_;
-  Real kinetic_half_ = 0.0;  // kinetic energy at the last half step
   std::vector<Real> plate_force_prev_, plate_displacement_prev_;
   std::vector<Real> body_damping_work_, body_kinetic_;
   std::vector<std::uint8_t> body_jumped_;

@@ -1,7 +1,7 @@
-#include "rcdem/specimens/specimen.hpp"
-
 #include <algorithm>
 #include <cmath>
+
+#include "rcdem/specimens/specimen.hpp"
 #include "rcdem/specimens/specimen_registry.hpp"
 #include "rcdem/tessellation/cell_complex.hpp"
 
@@ -15,7 +15,8 @@ void add_interface_spheres(const CylinderGeometry& cyl, Real diameter, Real spac
                            Index body, Particles& particles, SteelSpheres& steel) {
   const auto n = std::max<Index>(1, static_cast<Index>(std::llround(cyl.length / spacing)));
   for (Index k = 0; k < n; ++k) {
-    const Real s = (static_cast<Real>(k) + 0.5) * cyl.length / static_cast<Real>(n) - 0.5 * cyl.length;
+    const Real s =
+        (static_cast<Real>(k) + 0.5) * cyl.length / static_cast<Real>(n) - 0.5 * cyl.length;
     particles.add(cyl.centre + s * cyl.axis, 0.5 * diameter, ParticleKind::Steel);
     steel.bar.push_back(bar);
     steel.body.push_back(body);
@@ -28,9 +29,8 @@ Specimen build_specimen(const Scenario& scenario) {
   Specimen s;
   s.geometry = specimen_geometry(scenario);
   for (const auto& b : scenario.bars)
-    s.bars.push_back(build_straight_bar(b.start, b.end, b.diameter,
-                                        SteelMaterial{b.E, b.nu, b.f_y, b.density},
-                                        b.cylinder_length));
+    s.bars.push_back(build_straight_bar(
+        b.start, b.end, b.diameter, SteelMaterial{b.E, b.nu, b.f_y, b.density}, b.cylinder_length));
   s.particles = generate_packing(scenario.generation, s.geometry, &s.packing, scenario.bars);
   s.concrete_count = s.particles.size();
   s.steel.first = s.concrete_count;
@@ -44,7 +44,8 @@ Specimen build_specimen(const Scenario& scenario) {
   s.contacts = build_contact_network(s.particles, cells, s.geometry, scenario.contact, &s.network,
                                      &s.boundary);
   if (!s.bars.empty())
-    s.interfaces = build_interface_contacts(s.particles, cells, s.steel, scenario.bars, scenario.contact);
+    s.interfaces =
+        build_interface_contacts(s.particles, cells, s.steel, scenario.bars, scenario.contact);
   return s;
 }
 

@@ -18,15 +18,22 @@ struct Bodies {
   std::vector<Quat> orientation;          // rotation since t = 0 (identity at t = 0)
   std::vector<Quat> orientation0;         // body frame -> world at t = 0 (cylinders: z = axis)
   std::vector<Real> mass;
-  std::vector<Vec3> inertia;        // principal moments in the body frame
-  std::vector<Vec3> force, torque;  // gathered each step
-  std::vector<Real> radius;         // size scale, for the instability check
+  std::vector<Vec3> inertia;           // principal moments in the body frame
+  std::vector<Vec3> angular_momentum;  // world frame, at the half step
+  std::vector<Vec3> force, torque;     // gathered each step
+  std::vector<Real> radius;            // size scale, for the instability check
 
   Index size() const { return static_cast<Index>(position.size()); }
 };
 
-// Mass = density x Voronoi cell volume, so the specimen weighs density x volume; inertia 2/5 m r^2
-// with r the sphere radius (SPEC 6, assumed). `mass_scaling` multiplies both.
-Bodies bodies_from_particles(const Particles& particles, Real density, Real mass_scaling);
+// The first `count` particles as bodies. Mass = density x Voronoi cell volume, so the specimen
+// weighs density x volume; inertia 2/5 m r^2 with r the sphere radius (SPEC 6, assumed).
+// `mass_scaling` multiplies both.
+Bodies bodies_from_particles(const Particles& particles, Real density, Real mass_scaling,
+                             Index count = -1);
+
+// Appends a body (a bar's cylinder) with its mass, principal inertia and principal frame at t = 0.
+void add_body(Bodies& b, const Vec3& x, Real mass, const Vec3& inertia, const Quat& axes0,
+              Real size);
 
 }  // namespace rcdem

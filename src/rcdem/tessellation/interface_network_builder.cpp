@@ -82,7 +82,8 @@ std::vector<InterfaceContacts> build_interface_contacts(const Particles& p, cons
       net.constants.push_back(local_point_properties(params, area, m.nearest_distance));
     };
     add(split.centroid, scale * split.centroid_area);
-    for (std::size_t v = 0; v < m.largest.size(); ++v) add(m.largest[v], scale * split.vertex_area[v]);
+    for (std::size_t v = 0; v < m.largest.size(); ++v)
+      add(m.largest[v], scale * split.vertex_area[v]);
     net.point_begin.push_back(static_cast<Index>(net.point_area.size()));
   }
   return out;

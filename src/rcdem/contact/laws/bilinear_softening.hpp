@@ -36,8 +36,8 @@ struct BilinearSoftening {
   // Advances the point by the relative displacement increments (SPEC 4): dun along n (opening
   // positive) and dus in the current contact plane. The caller has already rotated s.fs and s.us
   // into that plane. Requires c.kn > 0 and c.ks > 0.
-  [[gnu::always_inline]] LawResult update(const LocalPointConstants& c, LocalPointState& s, Real dun,
-                   const Vec3& dus) const {
+  [[gnu::always_inline]] LawResult update(const LocalPointConstants& c, LocalPointState& s,
+                                          Real dun, const Vec3& dus) const {
     const Real fn_old = s.fn;
     const Vec3 fs_old = s.fs;
     s.un += dun;
