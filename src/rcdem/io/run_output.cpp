@@ -50,6 +50,53 @@ Vec3 face_strains(const Simulation& sim) {
   return e;
 }
 
+void SnapshotWriter::write_bars(const Simulation& sim, const std::string& stamp, VtuEncoding enc) {
+  // Each cylinder as a line between its two ends, with what its nodes carry (the larger of its
+  // two nodes' values; an end cylinder has one node).
+  const Bodies& b = sim.bodies();
+  const Index first = sim.concrete_count();
+  const auto ncyl = static_cast<std::size_t>(b.size() - first);
+  std::vector<Real> axial(ncyl, 0.0), moment(ncyl, 0.0), stress(ncyl, 0.0);
+  std::vector<std::uint8_t> yielded(ncyl, 0);
+  std::vector<std::int32_t> bar(ncyl, 0);
+  const auto& refs = sim.nodes();
+  for (std::size_t j = 0; j < refs.size(); ++j) {
+    const NodeState& st = sim.node_states()[j];
+    const Real area =
+        0.25 * kPi *
+        std::pow(sim.specimen().bars[static_cast<std::size_t>(refs[j].bar)].diameter, 2);
+    for (const Index body : {refs[j].body_a, refs[j].body_b}) {
+      const auto c = static_cast<std::size_t>(body - first);
+      if (std::abs(st.axial_force) > std::abs(axial[c])) axial[c] = st.axial_force;
+      moment[c] = std::max(moment[c], st.bending_moment.norm());
+      stress[c] = axial[c] / area;
+      yielded[c] |= st.yielded ? 1 : 0;
+      bar[c] = refs[j].bar;
+    }
+  }
+  UnstructuredGrid g;
+  std::size_t c = 0;
+  for (const Bar& br : sim.specimen().bars)
+    for (const auto& cyl : br.cylinders) {
+      const Index body = first + static_cast<Index>(c);
+      const Vec3 axis = b.orientation[body] * cyl.axis;
+      const auto id = static_cast<std::int64_t>(g.points.size());
+      g.points.push_back(b.position[body] - 0.5 * cyl.length * axis);
+      g.points.push_back(b.position[body] + 0.5 * cyl.length * axis);
+      g.add_line(id, id + 1);
+      ++c;
+    }
+  g.add_cell_data("axial_force", axial);
+  g.add_cell_data("axial_stress", stress);
+  g.add_cell_data("bending_moment", moment);
+  g.add_cell_data("yielded", yielded);
+  g.add_cell_data("bar", bar);
+  const std::string name = "bars_" + stamp + ".vtu";
+  write_vtu(dir_ / "snapshots" / name, g, enc);
+  bar_series_.emplace_back(sim.time(), "snapshots/" + name);
+  write_pvd(dir_ / "bars.pvd", bar_series_);
+}
+
 SnapshotWriter::SnapshotWriter(fs::path dir, bool binary, bool facets)
     : dir_(std::move(dir)), binary_(binary), facets_(facets) {
   fs::create_directories(dir_ / "snapshots");
@@ -61,23 +108,33 @@ void SnapshotWriter::write(const Simulation& sim) {
   const VtuEncoding enc = binary_ ? VtuEncoding::Binary : VtuEncoding::Ascii;
   const std::string stamp = fmt::format("{:09d}", sim.steps());
   {
+    // The concrete particles (bodies [0, concrete)); the bars follow in bars.vtu.
+    const auto nc = static_cast<std::size_t>(sim.concrete_count());
     UnstructuredGrid g;
-    g.points = b.position;
+    g.points.assign(b.position.begin(), b.position.begin() + static_cast<std::ptrdiff_t>(nc));
     g.add_vertex_cells();
-    g.add_point_data("radius", p.radius);
-    std::vector<std::int32_t> kind(p.kind.size());
-    for (std::size_t i = 0; i < kind.size(); ++i) kind[i] = static_cast<std::int32_t>(p.kind[i]);
+    g.add_point_data(
+        "radius",
+        std::vector<Real>(p.radius.begin(), p.radius.begin() + static_cast<std::ptrdiff_t>(nc)));
+    std::vector<std::int32_t> kind(nc);
+    for (std::size_t i = 0; i < nc; ++i) kind[i] = static_cast<std::int32_t>(p.kind[i]);
     g.add_point_data("kind", kind);
-    std::vector<Vec3> disp(b.position.size());
-    for (std::size_t i = 0; i < disp.size(); ++i) disp[i] = b.position[i] - b.position0[i];
+    std::vector<Vec3> disp(nc), vel(nc);
+    for (std::size_t i = 0; i < nc; ++i) {
+      disp[i] = b.position[i] - b.position0[i];
+      vel[i] = b.velocity[i];
+    }
     g.add_point_data("displacement", disp);
-    g.add_point_data("velocity", b.velocity);
-    g.add_point_data("damage", particle_damage(sim));
+    g.add_point_data("velocity", vel);
+    std::vector<Real> damage = particle_damage(sim);
+    damage.resize(nc);
+    g.add_point_data("damage", damage);
     const std::string name = "particles_" + stamp + ".vtu";
     write_vtu(dir_ / "snapshots" / name, g, enc);
     particle_series_.emplace_back(sim.time(), "snapshots/" + name);
     write_pvd(dir_ / "particles.pvd", particle_series_);
   }
+  if (!sim.nodes().empty()) write_bars(sim, stamp, enc);
   if (!facets_) return;
   const ContactNetwork& net = sim.specimen().contacts;
   const auto& pts = sim.contacts().point;
@@ -124,11 +181,20 @@ History::History(const Simulation& sim, std::string control) : control_(std::mov
     columns_.push_back(p.name + "_displacement_m");
     columns_.push_back(p.name + "_force_N");
   }
+  for (const auto& b : sim.pulled_bars()) {
+    columns_.push_back(b.name + "_pull_displacement_m");
+    columns_.push_back(b.name + "_pull_force_N");
+  }
   for (const char* c :
        {"strain_x", "strain_y", "strain_z", "load_N", "kinetic_J", "strain_J",
         "dissipated_damage_J", "dissipated_friction_J", "dissipated_damping_J", "external_work_J",
         "energy_balance_error", "damaged_points", "broken_points"})
     columns_.emplace_back(c);
+  bars_ = !sim.nodes().empty();
+  if (bars_)
+    for (const char* c :
+         {"max_axial_force_N", "yielded_nodes", "broken_interface_points", "dissipated_plastic_J"})
+      columns_.emplace_back(c);
 }
 
 void History::record(const Simulation& sim) {
@@ -137,14 +203,24 @@ void History::record(const Simulation& sim) {
     row.push_back(p.displacement);
     row.push_back(p.force[p.axis]);
   }
+  for (const auto& b : sim.pulled_bars()) {
+    row.push_back(b.displacement);
+    row.push_back(b.load());
+  }
   const Vec3 strain = face_strains(sim);
   row.insert(row.end(), {strain.x(), strain.y(), strain.z()});
   const Plate* control = sim.find_plate(control_);
+  const PulledBar* pulled = sim.find_pulled_bar(control_);
   const Energy& e = sim.energy();
-  row.insert(row.end(),
-             {control ? control->load() : 0.0, e.kinetic, e.strain, e.damage, e.friction, e.damping,
-              e.external_work, e.balance_error(), static_cast<double>(sim.damaged_points()),
-              static_cast<double>(sim.broken_points())});
+  row.insert(row.end(), {control  ? control->load()
+                         : pulled ? pulled->load()
+                                  : 0.0,
+                         e.kinetic, e.strain, e.damage, e.friction, e.damping, e.external_work,
+                         e.balance_error(), static_cast<double>(sim.damaged_points()),
+                         static_cast<double>(sim.broken_points())});
+  if (bars_)
+    row.insert(row.end(), {sim.max_axial_force(), static_cast<double>(sim.yielded_nodes()),
+                           static_cast<double>(sim.broken_interface_points()), e.plastic});
   rows_.push_back(std::move(row));
 }
 

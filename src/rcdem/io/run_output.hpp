@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "rcdem/io/vtu_writer.hpp"
 #include "rcdem/solver/simulation.hpp"
 
 namespace rcdem::io {
@@ -17,7 +18,8 @@ class SnapshotWriter {
  private:
   std::filesystem::path dir_;
   bool binary_, facets_;
-  std::vector<std::pair<double, std::string>> particle_series_, facet_series_;
+  void write_bars(const Simulation& sim, const std::string& stamp, VtuEncoding enc);
+  std::vector<std::pair<double, std::string>> particle_series_, facet_series_, bar_series_;
 };
 
 class History {
@@ -31,6 +33,7 @@ class History {
 
  private:
   std::string control_;
+  bool bars_ = false;
   std::vector<std::string> columns_;
   std::vector<std::vector<double>> rows_;
 };

@@ -253,6 +253,11 @@ void check_consistency(const Reader& r, const Scenario& s) {
 }
 
 Scenario convert(Reader& r, const std::string& text) {
+  // toml++ walks keys in sorted order: put the named sections back in the order of the file.
+  for (auto& [pattern, names] : r.instances)
+    std::stable_sort(names.begin(), names.end(), [&](const std::string& a, const std::string& b) {
+      return r.lines.at(a) < r.lines.at(b);
+    });
   Scenario s;
   s.source = r.file;
   s.text = text;
@@ -341,23 +346,42 @@ Scenario convert(Reader& r, const std::string& text) {
                   : law == "NL-A" ? InterfaceLaw::NL_A
                                   : InterfaceLaw::NL_B;
     b.sphere_spacing = r.real(inst + ".sphere_spacing");
+    b.pull_velocity = r.real(inst + ".pull_velocity");
+    b.pull_ramp_time = r.real(inst + ".pull_ramp_time");
     const Real length = (b.end - b.start).norm();
     if (length < 2.0 * b.diameter)
       fail(
           "{}: bar '{}' is {} m long: expected at least two diameters ({} m) between start and end",
           r.at(inst + ".end"), b.name, length, 2.0 * b.diameter);
-    // The bar and its cover of one radius must lie inside the specimen.
+    // The bar must lie inside the specimen, with a cover of one radius across it (along it, an
+    // end may reach a face: a pull-out bar leaves the specimen there).
+    const Vec3 dir = (b.end - b.start) / length;
     for (const auto* p : {&b.start, &b.end})
-      for (int ax = 0; ax < 3; ++ax)
-        if ((*p)[ax] < 0.5 * b.diameter || (*p)[ax] > s.specimen.size[ax] - 0.5 * b.diameter)
+      for (int ax = 0; ax < 3; ++ax) {
+        const Real cover = std::abs(dir[ax]) > 0.999 ? 0.0 : 0.5 * b.diameter;
+        if ((*p)[ax] < cover || (*p)[ax] > s.specimen.size[ax] - cover)
           fail(
-              "{}: bar '{}': its {} ({}, {}, {}) m is not inside the specimen with half a diameter "
-              "of cover",
+              "{}: bar '{}': its {} ({}, {}, {}) m is not inside the specimen with half a "
+              "diameter of cover",
               r.at(inst + (p == &b.start ? ".start" : ".end")), b.name,
               p == &b.start ? "start" : "end", (*p)[0], (*p)[1], (*p)[2]);
+      }
     s.bars.push_back(b);
   }
   s.control_plate = r.string("loading.control_plate");
+  s.control_bar = r.string("loading.control_bar");
+  if (!s.control_bar.empty()) {
+    const auto it = std::find_if(s.bars.begin(), s.bars.end(),
+                                 [&](const BarSettings& b) { return b.name == s.control_bar; });
+    if (it == s.bars.end() || it->pull_velocity <= 0.0)
+      fail(
+          "{}: key 'loading.control_bar': expected the name of a bar with pull_velocity > 0, "
+          "got '{}'",
+          r.at("loading.control_bar"), s.control_bar);
+    if (!s.control_plate.empty())
+      fail("{}: set loading.control_plate or loading.control_bar, not both",
+           r.at("loading.control_bar"));
+  }
   if (!s.control_plate.empty() &&
       std::none_of(s.plates.begin(), s.plates.end(),
                    [&](const PlateSettings& p) { return p.name == s.control_plate; }))

@@ -78,6 +78,8 @@ struct BarSettings {
   Real E = 200.0e9, nu = 0.3, f_y = 0.0, density = 7850.0;
   InterfaceLaw interface = InterfaceLaw::NL_B;
   Real sphere_spacing = 0.0;  // 0 = D / 2
+  Real pull_velocity = 0.0;   // pull-out of the first cylinder along end -> start
+  Real pull_ramp_time = 0.0;
   Real spacing() const { return sphere_spacing > 0.0 ? sphere_spacing : 0.5 * diameter; }
 };
 
@@ -107,6 +109,7 @@ struct Scenario {
   std::vector<PlateSettings> plates;  // in the order given
   std::vector<BarSettings> bars;      // in the order given
   std::string control_plate;
+  std::string control_bar;  // a pulled bar, instead of a control plate
   StopSettings stop;
   OutputSettings output;
   std::string text;                     // the scenario as given, kept for the run directory

@@ -162,6 +162,8 @@ Schema build() {
   s.key(
       typed("loading.control_plate", KeyType::String, std::string(""), Range{},
             "Name of the plate whose reaction is the load and whose displacement is controlled."));
+  s.key(typed("loading.control_bar", KeyType::String, std::string(""), Range{},
+              "Or: name of a pulled bar (pull_velocity > 0) whose pull-out force is the load."));
 
   s.section("stop", "Stop rules: the run ends when any active rule triggers (0 = off).");
   s.key(real("stop.displacement", 0.0, Range{0.0, kInf}, "m",
@@ -198,6 +200,11 @@ Schema build() {
   s.key(choice("bars.*.interface", std::string("NL-B"), {"EL", "NL-A", "NL-B"},
                "Steel-concrete interface law: 'EL' elastic, 'NL-A' BL with the concrete's "
                "parameters, 'NL-B' BL with sigma_n,t and tau halved (paper 3, Table 3)."));
+  s.key(real("bars.*.pull_velocity", 0.0, Range{0.0, kInf}, "m/s",
+             "Pull-out: the bar's first cylinder (at 'start') is moved at this speed along end -> "
+             "start, its rotation held (0 = not pulled)."));
+  s.key(real("bars.*.pull_ramp_time", 0.0, Range{0.0, kInf}, "s",
+             "The pull speed rises smoothly from 0 over this time."));
   s.key(real("bars.*.sphere_spacing", 0.0, Range{0.0, kInf}, "m",
              "Spacing of the interface spheres along each cylinder; 0 = D / 2."));
 

@@ -40,19 +40,20 @@ void validate_run(const Scenario& s) {
     fail("{}: no stop rule: set stop.displacement, stop.load_drop, stop.time or stop.steps",
          s.source.string());
   const PlateSettings* control = find(s, s.control_plate);
-  if ((s.stop.displacement > 0.0 || s.stop.load_drop > 0.0) && !control)
+  if ((s.stop.displacement > 0.0 || s.stop.load_drop > 0.0) && !control && s.control_bar.empty())
     fail(
-        "{}: stop.displacement and stop.load_drop need loading.control_plate, the plate they "
-        "refer to",
+        "{}: stop.displacement and stop.load_drop need loading.control_plate (or "
+        "loading.control_bar), the plate (or pulled bar) they refer to",
         at(s, s.stop.displacement > 0.0 ? "stop.displacement" : "stop.load_drop"));
   bool moving = false;
   for (const auto& p : s.plates) moving |= p.velocity != 0.0;
+  for (const auto& b : s.bars) moving |= b.pull_velocity > 0.0;
   if (!moving && s.stop.time <= 0.0 && s.stop.steps <= 0)
     fail(
         "{}: no plate moves (every velocity is 0), so stop.displacement and stop.load_drop "
         "can never trigger; set a plate's velocity, or stop.time or stop.steps",
         s.source.string());
-  if (s.stop.displacement > 0.0 && control->velocity == 0.0 && s.stop.time <= 0.0 &&
+  if (s.stop.displacement > 0.0 && control && control->velocity == 0.0 && s.stop.time <= 0.0 &&
       s.stop.steps <= 0)
     fail(
         "{}: stop.displacement can never trigger: the control plate '{}' does not move "
@@ -81,14 +82,23 @@ RunSummary run_scenario(const Scenario& sc, const std::filesystem::path& out,
 
   // How many steps the run will take, where a rule tells: for the history and snapshot spacing
   // and the progress line.
+  // The test's load and displacement: a control plate's, or a pulled bar's.
   const Plate* control = sim.find_plate(sc.control_plate);
+  const PulledBar* pulled = sim.find_pulled_bar(sc.control_bar);
+  const auto control_load = [&] {
+    return control ? control->load() : pulled ? pulled->load() : 0.0;
+  };
+  const auto control_displacement = [&] {
+    return control ? control->displacement : pulled ? pulled->displacement : 0.0;
+  };
+  const Real control_speed = control ? std::abs(control->velocity) : pulled ? pulled->speed : 0.0;
+  const Real control_ramp = control ? control->ramp_time : pulled ? pulled->ramp_time : 0.0;
   Real expected = std::numeric_limits<Real>::infinity();
   if (sc.stop.steps > 0) expected = std::min(expected, static_cast<Real>(sc.stop.steps));
   if (sc.stop.time > 0.0) expected = std::min(expected, sc.stop.time / sim.time_step());
-  if (sc.stop.displacement > 0.0 && control && control->velocity != 0.0)
+  if (sc.stop.displacement > 0.0 && control_speed > 0.0)
     expected = std::min(
-        expected, (sc.stop.displacement / std::abs(control->velocity) + 0.5 * control->ramp_time) /
-                      sim.time_step());
+        expected, (sc.stop.displacement / control_speed + 0.5 * control_ramp) / sim.time_step());
   if (!std::isfinite(expected)) expected = 1e5;  // load_drop only: a guess for the spacing
   const auto history_every = std::max<std::int64_t>(
       1, static_cast<std::int64_t>(expected / static_cast<Real>(sc.output.history_rows)));
@@ -98,7 +108,7 @@ RunSummary run_scenario(const Scenario& sc, const std::filesystem::path& out,
                 1, static_cast<std::int64_t>(expected / static_cast<Real>(sc.output.snapshots)))
           : std::numeric_limits<std::int64_t>::max();
 
-  io::History history(sim, sc.control_plate);
+  io::History history(sim, sc.control_plate.empty() ? sc.control_bar : sc.control_plate);
   io::SnapshotWriter snapshots(out, sc.output.binary_vtu, sc.output.write_facets);
   snapshots.write(sim);
   history.record(sim);
@@ -111,11 +121,11 @@ RunSummary run_scenario(const Scenario& sc, const std::filesystem::path& out,
   for (;;) {
     sim.step();
     if (on_step) on_step(sim);
-    const Real load = control ? control->load() : 0.0;
+    const Real load = control_load();
     if (load > peak) {
       peak = load;
       r.peak_load = load;
-      r.displacement_at_peak = control->displacement;
+      r.displacement_at_peak = control_displacement();
       const Real strain = sim.energy().strain;
       r.kinetic_over_strain_at_peak = strain > 0.0 ? sim.energy().kinetic / strain : 0.0;
     }
@@ -128,7 +138,7 @@ RunSummary run_scenario(const Scenario& sc, const std::filesystem::path& out,
     // Stop rules.
     if (sc.stop.steps > 0 && n >= sc.stop.steps) r.stop_reason = "steps";
     if (sc.stop.time > 0.0 && sim.time() >= sc.stop.time) r.stop_reason = "time";
-    if (sc.stop.displacement > 0.0 && std::abs(control->displacement) >= sc.stop.displacement)
+    if (sc.stop.displacement > 0.0 && std::abs(control_displacement()) >= sc.stop.displacement)
       r.stop_reason = "displacement";
     // After the peak: the load has fallen below the fraction, and the peak is a real one (the
     // specimen has cracked: some local point is fully broken).
@@ -169,7 +179,7 @@ RunSummary run_scenario(const Scenario& sc, const std::filesystem::path& out,
   j["time_s"] = r.time;
   j["time_step_s"] = sim.time_step();
   j["stable_time_step_s"] = sim.stable_time_step();
-  j["control_plate"] = sc.control_plate;
+  j["control"] = sc.control_plate.empty() ? sc.control_bar : sc.control_plate;
   j["peak_load_N"] = r.peak_load;
   j["displacement_at_peak_m"] = r.displacement_at_peak;
   j["kinetic_over_strain_at_peak"] = r.kinetic_over_strain_at_peak;
@@ -180,6 +190,7 @@ RunSummary run_scenario(const Scenario& sc, const std::filesystem::path& out,
                  {"dissipated_damage_J", e.damage},
                  {"dissipated_friction_J", e.friction},
                  {"dissipated_damping_J", e.damping},
+                 {"dissipated_plastic_J", e.plastic},
                  {"balance_error", e.balance_error()}};
   j["damaged_points"] = sim.damaged_points();
   j["broken_points"] = sim.broken_points();

@@ -41,6 +41,26 @@ Simulation::Simulation(const Scenario& sc, Specimen specimen)
     }
     first += static_cast<Index>(bar.cylinders.size());
   }
+  // Pulled bars: their first cylinder is driven.
+  driven_.assign(static_cast<std::size_t>(bodies_.size()), -1);
+  {
+    Index body = specimen_.concrete();
+    for (std::size_t k = 0; k < specimen_.bars.size(); ++k) {
+      const BarSettings& bs = sc.bars[k];
+      if (bs.pull_velocity > 0.0) {
+        PulledBar pb;
+        pb.name = bs.name;
+        pb.body = body;
+        pb.direction = (bs.start - bs.end).normalized();
+        pb.speed = bs.pull_velocity;
+        pb.ramp_time = bs.pull_ramp_time;
+        driven_[static_cast<std::size_t>(body)] = static_cast<std::int64_t>(pulled_.size());
+        pulled_.push_back(pb);
+      }
+      body += static_cast<Index>(specimen_.bars[k].cylinders.size());
+    }
+    pulled_force_prev_.assign(pulled_.size(), 0.0);
+  }
   node_states_.assign(nodes_.size(), NodeState{});
   node_forces_.assign(nodes_.size(), NodeForces{});
   // The interface contacts of each bar, with its law (paper 3: EL, NL-A, NL-B).
@@ -119,6 +139,17 @@ void Simulation::compute_stable_time_step() {
   stable_dt_ = dt;
 }
 
+Real PulledBar::velocity_at(Real t) const {
+  if (ramp_time <= 0.0 || t >= ramp_time) return speed;
+  return speed * 0.5 * (1.0 - std::cos(kPi * t / ramp_time));
+}
+
+const PulledBar* Simulation::find_pulled_bar(const std::string& name) const {
+  for (const auto& p : pulled_)
+    if (p.name == name) return &p;
+  return nullptr;
+}
+
 const Plate* Simulation::find_plate(const std::string& name) const {
   for (const auto& p : plates_)
     if (p.name == name) return &p;
@@ -187,6 +218,18 @@ void Simulation::step() {
   energy_.damping += damping_work;
   energy_.kinetic = kinetic;
 
+  // Pulled bars: the driver's work over the last move (trapezoidal in its force).
+  for (std::size_t k = 0; k < pulled_.size(); ++k) {
+    PulledBar& pb = pulled_[k];
+    pb.force = bodies_.force[pb.body];
+    const Real f_driver = pb.load();
+    const Real work = 0.5 * (pulled_force_prev_[k] + f_driver) * pb.last_step;
+    pb.work += work;
+    energy_.external_work += work;
+    pulled_force_prev_[k] = f_driver;
+    pb.last_step = bodies_.velocity[pb.body].dot(pb.direction) * dt_;
+    pb.displacement += pb.last_step;
+  }
   // 5. Plates: work done over the last move (trapezoidal in the force), then the next move.
   for (std::size_t p = 0; p < plates_.size(); ++p) {
     Plate& plate = plates_[p];
@@ -263,7 +306,16 @@ void Simulation::integrate() {
       fd[k] = alpha * std::abs(f[k]) * (v_old[k] > 0 ? 1.0 : v_old[k] < 0 ? -1.0 : 0.0);
       td[k] = alpha * std::abs(t[k]) * (w_old[k] > 0 ? 1.0 : w_old[k] < 0 ? -1.0 : 0.0);
     }
-    const Vec3 v_new = v_old + (f - fd) * (dt / b.mass[i]);
+    Vec3 v_new = v_old + (f - fd) * (dt / b.mass[i]);
+    const std::int64_t driven = driven_[static_cast<std::size_t>(i)];
+    if (driven >= 0) {
+      // A pulled cylinder: prescribed velocity, rotation held, no damping.
+      const PulledBar& pb = pulled_[static_cast<std::size_t>(driven)];
+      v_new = pb.velocity_at(time_ + 0.5 * dt) * pb.direction;
+      fd.setZero();
+      td = t;
+      b.angular_momentum[i].setZero();
+    }
     // Rotation: the angular momentum takes the torque and the orientation follows by the
     // rotational leap-frog (rigid_rotation.hpp): exact for the spheres' isotropic inertia, second
     // order for the cylinders'.

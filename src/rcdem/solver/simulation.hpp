@@ -17,6 +17,21 @@
 
 namespace rcdem {
 
+// A bar pulled out by its first cylinder (pull-out tests): the cylinder's velocity is prescribed
+// along `direction`, its rotation held; the force it takes is the pull-out load.
+struct PulledBar {
+  std::string name;
+  Index body = 0;
+  Vec3 direction = Vec3::Zero();  // unit, end -> start
+  Real speed = 0.0, ramp_time = 0.0;
+  Real displacement = 0.0;    // along direction
+  Vec3 force = Vec3::Zero();  // on the cylinder from the concrete and the rest of the bar
+  Real work = 0.0;
+  Real last_step = 0.0;
+  Real velocity_at(Real t) const;
+  Real load() const { return -force.dot(direction); }
+};
+
 class Simulation {
  public:
   // Takes the specimen; the time step is the stable estimate times solver.dt_safety, or the
@@ -41,6 +56,8 @@ class Simulation {
   const std::vector<Plate>& plates() const { return plates_; }
   const PlateContacts& plate_contacts() const { return plate_contacts_; }
   const Plate* find_plate(const std::string& name) const;
+  const PulledBar* find_pulled_bar(const std::string& name) const;
+  const std::vector<PulledBar>& pulled_bars() const { return pulled_; }
   const Energy& energy() const { return energy_; }
 
   // The bars (SPEC 7-8): cylinders are bodies [concrete_count, size); nodes join consecutive ones.
@@ -85,6 +102,9 @@ class Simulation {
   std::vector<NodeRef> node_refs_;
   std::vector<NodeState> node_states_;
   std::vector<NodeForces> node_forces_;
+  std::vector<PulledBar> pulled_;
+  std::vector<std::int64_t> driven_;  // per body: index into pulled_, or -1
+  std::vector<Real> pulled_force_prev_;
   Real damping_;
   Real dt_ = 0.0, stable_dt_ = 0.0;
   Real time_ = 0.0;
