@@ -120,12 +120,16 @@ void apply_override(rcdem::Scenario& s, const std::string& item) {
 
 int calibrate(const fs::path& scenario_path, fs::path out, bool force, double size,
               double rate_factor, const std::vector<std::string>& sets, const std::string& target,
-              double tolerance, int iterations) {
+                            double tolerance, int iterations, bool peak_only) {
   rcdem::Scenario base = rcdem::load_scenario(scenario_path);
   for (const auto& item : sets) apply_override(base, item);
   rcdem::CalibrationOptions opt;
   opt.uniaxial.size = size;
-  opt.uniaxial.rate_factor = rate_factor;
+    opt.uniaxial.rate_factor = rate_factor;
+  if (peak_only) {
+    opt.uniaxial.stop_after_peak = 0.85;
+    opt.uniaxial.snapshots = 0;
+  }
   opt.tolerance = tolerance;
   opt.max_iterations = iterations;
   if (!target.empty()) opt.target = rcdem::parse_macro_properties(target);
@@ -191,6 +195,9 @@ int main(int argc, char** argv) {
                   "Search contact parameters for E=..,nu=..,sigma_c=..,sigma_t=.. (SI)");
   cal->add_option("--tolerance", tolerance, "Relative tolerance of the search")
       ->check(CLI::Range(0.001, 0.5));
+    bool peak_only = false;
+  cal->add_flag("--peak-only", peak_only,
+                "Stop each test soon after its peak (E, nu and strengths only; no post-peak curve)");
   cal->add_option("--iterations", iterations, "At most this many search iterations")
       ->check(CLI::Range(1, 50));
 
@@ -206,8 +213,8 @@ int main(int argc, char** argv) {
     if (*gen) return generate(scenario, out, force);
     if (*runc) return run(scenario, out, force);
     if (*cal)
-      return calibrate(scenario, out, force, size, rate_factor, sets, target, tolerance,
-                       iterations);
+            return calibrate(scenario, out, force, size, rate_factor, sets, target, tolerance, iterations,
+                       peak_only);
     if (*schema) {
       rcdem::io::scenario_schema().print_template(std::cout);
       return 0;
