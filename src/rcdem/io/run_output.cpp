@@ -91,10 +91,17 @@ void SnapshotWriter::write_bars(const Simulation& sim, const std::string& stamp,
   g.add_cell_data("bending_moment", moment);
   g.add_cell_data("yielded", yielded);
   g.add_cell_data("bar", bar);
-  const std::string name = "bars_" + stamp + ".vtu";
+    emit(g, "bars", stamp, sim.time(), enc, bar_series_);
+}
+
+// snapshots/KIND_STEP.vtu, and KIND.pvd listing the series so far.
+void SnapshotWriter::emit(const UnstructuredGrid& g, const std::string& kind,
+                          const std::string& stamp, double time, VtuEncoding enc,
+                          std::vector<std::pair<double, std::string>>& series) {
+  const std::string name = kind + "_" + stamp + ".vtu";
   write_vtu(dir_ / "snapshots" / name, g, enc);
-  bar_series_.emplace_back(sim.time(), "snapshots/" + name);
-  write_pvd(dir_ / "bars.pvd", bar_series_);
+  series.emplace_back(time, "snapshots/" + name);
+  write_pvd(dir_ / (kind + ".pvd"), series);
 }
 
 SnapshotWriter::SnapshotWriter(fs::path dir, bool binary, bool facets)
@@ -129,10 +136,7 @@ void SnapshotWriter::write(const Simulation& sim) {
     std::vector<Real> damage = particle_damage(sim);
     damage.resize(nc);
     g.add_point_data("damage", damage);
-    const std::string name = "particles_" + stamp + ".vtu";
-    write_vtu(dir_ / "snapshots" / name, g, enc);
-    particle_series_.emplace_back(sim.time(), "snapshots/" + name);
-    write_pvd(dir_ / "particles.pvd", particle_series_);
+        emit(g, "particles", stamp, sim.time(), enc, particle_series_);
   }
   if (!sim.nodes().empty()) write_bars(sim, stamp, enc);
   if (!facets_) return;
@@ -169,10 +173,7 @@ void SnapshotWriter::write(const Simulation& sim) {
   g.add_cell_data("damage", damage);
   g.add_cell_data("opening", opening);
   g.add_cell_data("broken", broken);
-  const std::string name = "facets_" + stamp + ".vtu";
-  write_vtu(dir_ / "snapshots" / name, g, enc);
-  facet_series_.emplace_back(sim.time(), "snapshots/" + name);
-  write_pvd(dir_ / "facets.pvd", facet_series_);
+    emit(g, "facets", stamp, sim.time(), enc, facet_series_);
 }
 
 History::History(const Simulation& sim, std::string control) : control_(std::move(control)) {
