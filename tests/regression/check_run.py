@@ -1,0 +1,68 @@
+#!/usr/bin/python3
+"""End-to-end check of `rcdem run` (issue 3 and 4 outputs) on tests/regression/small_run.toml:
+the run ends with external work = strain + kinetic + dissipated within 1% (printed and in
+summary.json), history.csv has the documented columns with one row per recorded step, and the
+snapshot series (particles, facets, bars) are readable by meshio with their fields.
+
+usage: check_run.py RCDEM_BINARY SOURCE_DIR
+"""
+import csv
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+import meshio
+
+rcdem, source = sys.argv[1], sys.argv[2]
+scenario = os.path.join(source, "tests", "regression", "small_run.toml")
+passed, failures = 0, []
+
+
+def check(cond, what):
+    global passed
+    if cond:
+        passed += 1
+        print(f"ok   {what}")
+    else:
+        failures.append(what)
+        print(f"FAIL {what}")
+
+
+with tempfile.TemporaryDirectory() as tmp:
+    out = os.path.join(tmp, "run")
+    r = subprocess.run([rcdem, "run", scenario, "-o", out], capture_output=True, text=True,
+                       timeout=600)
+    check(r.returncode == 0, f"run exits 0 ({r.stderr.strip()[-300:]})")
+    check("energy balance" in r.stderr, "the energy balance is printed")
+    s = json.load(open(os.path.join(out, "summary.json")))
+    err = s["energy"]["balance_error"]
+    check(err < 0.01, f"external work = strain + kinetic + dissipated within 1% ({100 * err:.3f}%)")
+    check(s["energy"]["external_work_J"] > 0, "the plate did work")
+    check(s["steps"] == 3000 and s["stop_reason"] == "steps", "stopped by the step rule")
+    check(s["specimen"]["cylinders"] == 4 and s["specimen"]["interface_contacts"] > 0,
+          "the bar has 4 cylinders and interface contacts")
+    rows = list(csv.DictReader(open(os.path.join(out, "history.csv"))))
+    need = ["step", "time_s", "top_displacement_m", "top_force_N", "load_N", "kinetic_J",
+            "strain_J", "dissipated_damage_J", "dissipated_friction_J", "dissipated_damping_J",
+            "external_work_J", "energy_balance_error", "damaged_points", "broken_points",
+            "max_axial_force_N", "yielded_nodes", "broken_interface_points", "dissipated_plastic_J"]
+    check(all(c in rows[0] for c in need), "history.csv has the documented columns")
+    steps = [int(float(x["step"])) for x in rows]
+    check(steps == sorted(set(steps)) and steps[-1] == 3000, "history rows are unique, in order, to the end")
+    check(float(rows[-1]["max_axial_force_N"]) > 0, "the bar carries force")
+    for kind, fields in (("particles", ["displacement", "velocity", "damage", "radius"]),
+                         ("facets", ["damage", "opening", "broken"]),
+                         ("bars", ["axial_force", "bending_moment", "yielded"])):
+        pvd = os.path.join(out, f"{kind}.pvd")
+        check(os.path.exists(pvd), f"{kind}.pvd written")
+        last = sorted(f for f in os.listdir(os.path.join(out, "snapshots")) if f.startswith(kind))[-1]
+        m = meshio.read(os.path.join(out, "snapshots", last))
+        names = set(m.point_data) | set(m.cell_data)
+        check(all(f in names for f in fields), f"{last} has {fields}")
+    check(os.path.exists(os.path.join(out, "load_displacement.png")), "load_displacement.png written")
+    check(not [f for f in os.listdir(out) if ".tmp." in f], "no temporary files left")
+
+print(f"{passed} passed, {len(failures)} failed")
+sys.exit(1 if failures else 0)
