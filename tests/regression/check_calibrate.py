@@ -11,18 +11,13 @@ import subprocess
 import sys
 import tempfile
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from checklist import Checklist  # noqa: E402
+
 rcdem, source = sys.argv[1], sys.argv[2]
-passed, failures = 0, []
+checks = Checklist()
+check = checks.check
 
-
-def check(cond, what):
-    global passed
-    if cond:
-        passed += 1
-        print(f"ok   {what}")
-    else:
-        failures.append(what)
-        print(f"FAIL {what}")
 
 
 with tempfile.TemporaryDirectory() as tmp:
@@ -45,5 +40,4 @@ with tempfile.TemporaryDirectory() as tmp:
                        capture_output=True, text=True, timeout=120)
     check(r.returncode == 0, f"a scenario including the fragment is accepted ({r.stderr.strip()})")
 
-print(f"{passed} passed, {len(failures)} failed")
-sys.exit(1 if failures else 0)
+checks.finish()

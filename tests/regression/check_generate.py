@@ -12,21 +12,15 @@ import subprocess
 import sys
 import tempfile
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from checklist import Checklist  # noqa: E402
+
 rcdem, source = sys.argv[1], sys.argv[2]
+checks = Checklist()
+check = checks.check
 scenario = os.path.join(source, "tests", "regression", "small_cube.toml")
 check_vtu = os.path.join(source, "tools", "check_vtu.py")
-failures = []
-passed = 0
 
-
-def check(cond, what):
-    global passed
-    if cond:
-        passed += 1
-        print(f"ok   {what}")
-    else:
-        failures.append(what)
-        print(f"FAIL {what}")
 
 
 def generate(scen, out, *extra):
@@ -100,5 +94,4 @@ with tempfile.TemporaryDirectory() as tmp:
     check(r.returncode == 0, "--force overwrites")
     check(not [f for f in os.listdir(a) if ".tmp." in f], "no temporary files left behind")
 
-print(f"{passed} passed, {len(failures)} failed")
-sys.exit(1 if failures else 0)
+checks.finish()

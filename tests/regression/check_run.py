@@ -13,21 +13,16 @@ import subprocess
 import sys
 import tempfile
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from checklist import Checklist  # noqa: E402
+
 import meshio
 
 rcdem, source = sys.argv[1], sys.argv[2]
+checks = Checklist()
+check = checks.check
 scenario = os.path.join(source, "tests", "regression", "small_run.toml")
-passed, failures = 0, []
 
-
-def check(cond, what):
-    global passed
-    if cond:
-        passed += 1
-        print(f"ok   {what}")
-    else:
-        failures.append(what)
-        print(f"FAIL {what}")
 
 
 with tempfile.TemporaryDirectory() as tmp:
@@ -64,5 +59,4 @@ with tempfile.TemporaryDirectory() as tmp:
     check(os.path.exists(os.path.join(out, "load_displacement.png")), "load_displacement.png written")
     check(not [f for f in os.listdir(out) if ".tmp." in f], "no temporary files left")
 
-print(f"{passed} passed, {len(failures)} failed")
-sys.exit(1 if failures else 0)
+checks.finish()
