@@ -3,12 +3,12 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <cstdlib>
 #include <sstream>
 
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
 #include "rcdem/io/atomic_file.hpp"
+#include "rcdem/io/plot_tool.hpp"
 
 namespace rcdem {
 
@@ -119,20 +119,6 @@ nlohmann::ordered_json pair_json(const Pair& p) {
   return j;
 }
 
-void plot(const fs::path& out) {
-  // Figure 7 as PNG; the figure is a convenience, the CSVs are the result.
-  const char* candidates[] = {"tools/plot_calibration.py",
-                              RCDEM_SOURCE_DIR "/tools/plot_calibration.py"};
-  for (const char* script : candidates) {
-    if (!fs::exists(script)) continue;
-    const std::string cmd =
-        fmt::format("/usr/bin/python3 '{}' '{}' >/dev/null 2>&1", script, out.string());
-    if (std::system(cmd.c_str()) != 0)
-      fmt::print(stderr, "warning: plotting failed ({}); the curves are in the CSV files\n", cmd);
-    return;
-  }
-}
-
 }  // namespace
 
 ContactParameters update_parameters(const ContactParameters& p, const MacroProperties& m,
@@ -213,13 +199,9 @@ CalibrationResult calibrate(const Scenario& base_in, const CalibrationOptions& o
                                   : "the parameters as given"));
   // The final pair's curves beside the JSON, for the plot and for users.
   for (const auto* r : {&pair.compression, &pair.tension}) {
-    std::string csv = "strain,stress_Pa,lateral_strain,damaged_fraction,broken_fraction\n";
-    for (const auto& p : r->curve)
-      csv += fmt::format("{:.8g},{:.8g},{:.8g},{:.6g},{:.6g}\n", p.strain, p.stress, p.lateral,
-                         p.damaged, p.broken);
-    io::write_file_atomically(out / fmt::format("curve_{}.csv", mode_name(r->mode)), csv);
+    write_curve_csv(out / fmt::format("curve_{}.csv", mode_name(r->mode)), r->curve);
   }
-  plot(out);
+  io::run_plot_tool("plot_calibration.py", out);  // figure7.png
   return result;
 }
 

@@ -76,6 +76,14 @@ void analyse_curve(UniaxialResult& r) {
   r.nu = strain > 0.0 ? -lateral / strain : 0.0;
 }
 
+void write_curve_csv(const std::filesystem::path& path, const std::vector<CurvePoint>& curve) {
+  std::string csv = "strain,stress_Pa,lateral_strain,damaged_fraction,broken_fraction\n";
+  for (const auto& p : curve)
+    csv += fmt::format("{:.8g},{:.8g},{:.8g},{:.6g},{:.6g}\n", p.strain, p.stress, p.lateral,
+                       p.damaged, p.broken);
+  io::write_file_atomically(path, csv);
+}
+
 UniaxialResult run_uniaxial(const Scenario& base, UniaxialMode mode, const UniaxialOptions& opt,
                             const std::filesystem::path& dir) {
   const Scenario s = uniaxial_scenario(base, mode, opt);
@@ -99,11 +107,7 @@ UniaxialResult run_uniaxial(const Scenario& base, UniaxialMode mode, const Uniax
     r.curve.push_back({sign * row[ez], row[load] / area, sign * 0.5 * (row[ex] + row[ey]),
                        row[dam] / points, row[brk] / points});
   analyse_curve(r);
-  std::string csv = "strain,stress_Pa,lateral_strain,damaged_fraction,broken_fraction\n";
-  for (const auto& p : r.curve)
-    csv += fmt::format("{:.8g},{:.8g},{:.8g},{:.6g},{:.6g}\n", p.strain, p.stress, p.lateral,
-                       p.damaged, p.broken);
-  io::write_file_atomically(dir / "curve.csv", csv);
+  write_curve_csv(dir / "curve.csv", r.curve);
   return r;
 }
 

@@ -58,4 +58,7 @@ void analyse_curve(UniaxialResult& r);
 
 const char* mode_name(UniaxialMode m);
 
+// A curve as CSV: strain, stress_Pa, lateral_strain, damaged_fraction, broken_fraction.
+void write_curve_csv(const std::filesystem::path& path, const std::vector<CurvePoint>& curve);
+
 }  // namespace rcdem

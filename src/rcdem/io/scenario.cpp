@@ -410,7 +410,7 @@ Scenario parse_scenario(const std::string& text, const std::string& source_name)
   } catch (const toml::parse_error& e) {
     fail("{}:{}: TOML syntax error: {}", source_name, e.source().begin.line, e.description());
   }
-  Reader reader{io::scenario_schema(), source_name, {}, {}};
+  Reader reader{io::scenario_schema(), source_name, {}, {}, {}};
   // include = ["fragment.toml", ...]: each fragment's keys are read first (paths relative to this
   // file), then this file's, whose values override the fragments' (e.g. a calibrated [contact]
   // fragment with one value changed for a study).

@@ -70,6 +70,13 @@ PlateContacts make_plate_contacts(const std::vector<Plate>& plates, const Bounda
       if (faces.face[k] != face) continue;
       const Index i = faces.particle[k];
       const Vec3& c = faces.centroid[k];
+      // Only faces within reach of the plate become contacts: a particle may slide onto the
+      // rectangle during the run, but not from farther than a few of its radii. The others would
+      // be evaluated every step for nothing (supports cover 6% of a beam's bottom face).
+      const Real reach = 4.0 * bodies.radius[i];
+      if (c[u] < plate.u_min - reach || c[u] > plate.u_max + reach || c[v] < plate.v_min - reach ||
+          c[v] > plate.v_max + reach)
+        continue;
       const Real h0 = std::abs(bodies.position0[i][plate.axis] - plate.face_coordinate);
       const Real kn = params.E_bar * faces.area[k] / (2.0 * h0);
       pc.plate.push_back(static_cast<int>(p));

@@ -6,12 +6,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <limits>
 
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
 #include "rcdem/io/atomic_file.hpp"
+#include "rcdem/io/plot_tool.hpp"
 #include "rcdem/io/run_output.hpp"
 #include "rcdem/io/specimen_output.hpp"
 
@@ -29,19 +29,6 @@ const PlateSettings* find(const Scenario& s, const std::string& name) {
   for (const auto& p : s.plates)
     if (p.name == name) return &p;
   return nullptr;
-}
-
-// load_displacement.png beside history.csv (a convenience: the CSV is the result).
-void plot_history(const std::filesystem::path& out) {
-  const char* candidates[] = {"tools/plot_history.py", RCDEM_SOURCE_DIR "/tools/plot_history.py"};
-  for (const char* script : candidates) {
-    if (!std::filesystem::exists(script)) continue;
-    const std::string cmd =
-        fmt::format("/usr/bin/python3 '{}' '{}' >/dev/null 2>&1", script, out.string());
-    if (std::system(cmd.c_str()) != 0 && !Progress::quiet_default())
-      fmt::print(stderr, "warning: plotting failed ({}); the curve is in history.csv\n", cmd);
-    return;
-  }
 }
 
 }  // namespace
@@ -215,8 +202,8 @@ RunSummary run_scenario(const Scenario& sc, const std::filesystem::path& out,
   j["loop_seconds"] = loop;
   j["steps_per_second"] = loop > 0.0 ? static_cast<double>(r.steps) / loop : 0.0;
   j["seconds"] = wall;
-    io::write_file_atomically(out / "summary.json", j.dump(2) + "\n");
-  plot_history(out);
+  io::write_file_atomically(out / "summary.json", j.dump(2) + "\n");
+  io::run_plot_tool("plot_history.py", out);  // load_displacement.png
   r.history_columns = history.columns();
   r.history_rows = history.data();
   if (!quiet)
