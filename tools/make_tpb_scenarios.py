@@ -2,7 +2,8 @@
 """Writes the three-point bending scenarios of the paper's study (SPEC 10, Table 3):
 examples/three_point_bending/study/AN{0..4}[_{EL,NL-A,NL-B}].toml, 13 cases, from one template,
 so that they differ only in the bars; all with the calibrated contact parameters
-(examples/calibrated_contact.toml). (examples/three_point_bending/AN0.toml, with Table 2's
+(examples/calibrated_contact.toml). The same 13 for `rcdem study --quick` in study/quick/:
+particles twice as coarse, faster loading, a shorter run (docs/case-study.md says why each). (examples/three_point_bending/AN0.toml, with Table 2's
 parameters, is the generation example.) Run from the repository root: tools/make_tpb_scenarios.py
 """
 import os
@@ -20,22 +21,35 @@ MODELS = {  # name: (bars, diameter [m], f_y [Pa], P_exp [N]) from Table 3
 }
 
 
-def plate(name, face, x_centre, velocity=None):
+# Full study: the paper's particles; quick: twice the diameters (8x fewer particles, a 2x longer
+# step). Loading speeds: the rate study of docs/case-study.md.
+FULL = dict(velocity=-0.05, ramp=1.0e-3, stop=0.002, snapshots=10, coarsen=None, sub="")
+QUICK = dict(velocity=-0.2, ramp=0.5e-3, stop=0.0015, snapshots=4, coarsen=2.0, sub="quick")
+D_AGG, D_MORTAR = (0.008, 0.012), (0.008, 0.009)  # diameters of the schema's defaults (SPEC 2)
+
+
+def plate(name, face, x_centre, velocity=None, ramp=None):
     lines = [f"[plates.{name}]", f'face = "{face}"',
              f"extent = [{x_centre - PLATE / 2:.3f}, {x_centre + PLATE / 2:.3f}, 0.0, {B}]   # x, y [m]"]
     if velocity is not None:
-        lines += [f"velocity = {velocity}          # m/s, downwards", "ramp_time = 1.0e-3       # s"]
+        lines += [f"velocity = {velocity}          # m/s, downwards", f"ramp_time = {ramp:g}       # s"]
     return "\n".join(lines) + "\n"
 
 
-def scenario(model, interface):
+def scenario(model, interface, mode):
     n, d, fy, p_exp = MODELS[model]
+    up = "../" if mode["sub"] else ""
     head = (f"# {model}{'' if n == 0 else ' ' + interface}: three-point bending of the paper's beam "
-            f"(SPEC 10, Table 3: P_exp = {p_exp / 1e3:.1f} kN).\n"
+            f"(SPEC 10, Table 3: P_exp = {p_exp / 1e3:.1f} kN){' - quick variant' if mode['sub'] else ''}.\n"
             f"# Written by tools/make_tpb_scenarios.py; SI units.\n"
-            f'include = ["../../calibrated_contact.toml"]\n\n'
+            f'include = ["{up}../../calibrated_contact.toml"]\n\n'
             f"[specimen]\nshape = \"beam\"\nsize = [{L}, {B}, {H}]   # length x, width y, depth z [m]\n\n"
             f"[generation]\nseed = 1\n\n")
+    if mode["coarsen"]:
+        k = mode["coarsen"]
+        head += (f"# Quick: particles {k:g}x coarser than the paper's.\n"
+                 f"[generation.aggregate]\nd_min = {k * D_AGG[0]:g}\nd_max = {k * D_AGG[1]:g}\n\n"
+                 f"[generation.mortar]\nd_min = {k * D_MORTAR[0]:g}\nd_max = {k * D_MORTAR[1]:g}\n\n")
     bars = ""
     ys = [B / 2] if n == 1 else [B / 4, 3 * B / 4] if n == 2 else []
     for k, y in enumerate(ys):
@@ -43,17 +57,21 @@ def scenario(model, interface):
                  f"diameter = {d}\nf_y = {fy:.4g}\ninterface = \"{interface}\"\n\n")
     x0 = (L - SPAN) / 2
     plates = (plate("support_left", "z-", x0) + "\n" + plate("support_right", "z-", L - x0) + "\n"
-              + plate("load", "z+", L / 2, velocity=-0.05))
-    tail = ("\n[loading]\ncontrol_plate = \"load\"\n\n[stop]\ndisplacement = 0.002   # m of midspan deflection\n"
-            "load_drop = 0.2        # or the load below 20% of its peak after it\n\n[output]\nsnapshots = 10\n")
+              + plate("load", "z+", L / 2, velocity=mode["velocity"], ramp=mode["ramp"]))
+    tail = ("\n[loading]\ncontrol_plate = \"load\"\n\n"
+            "[solver]\ndt_safety = 0.5        # SPEC 6's upper bound (docs/case-study.md)\n\n"
+            f"[stop]\ndisplacement = {mode['stop']:g}   # m of midspan deflection\n"
+            "load_drop = 0.2        # or the load below 20% of its peak after it\n\n"
+            f"[output]\nsnapshots = {mode['snapshots']}\n")
     return head + bars + plates + tail
 
 
-out = os.path.join("examples", "three_point_bending", "study")
-os.makedirs(out, exist_ok=True)
-for model in MODELS:
-    for interface in (["EL"] if model == "AN0" else ["EL", "NL-A", "NL-B"]):
-        name = model if model == "AN0" else f"{model}_{interface}"
-        with open(os.path.join(out, f"{name}.toml"), "w") as f:
-            f.write(scenario(model, interface))
-        print(os.path.join(out, f"{name}.toml"))
+for mode in (FULL, QUICK):
+    out = os.path.join("examples", "three_point_bending", "study", mode["sub"])
+    os.makedirs(out, exist_ok=True)
+    for model in MODELS:
+        for interface in (["EL"] if model == "AN0" else ["EL", "NL-A", "NL-B"]):
+            name = model if model == "AN0" else f"{model}_{interface}"
+            with open(os.path.join(out, f"{name}.toml"), "w") as f:
+                f.write(scenario(model, interface, mode))
+            print(os.path.join(out, f"{name}.toml"))

@@ -1,4 +1,4 @@
-// rcdem command line: generate | print-schema (run, calibrate and study arrive with the solver).
+// rcdem command line: generate | run | calibrate | study | print-schema.
 #include <fmt/format.h>
 
 #include <CLI/CLI.hpp>
@@ -18,6 +18,7 @@
 #include "rcdem/io/specimen_output.hpp"
 #include "rcdem/solver/run.hpp"
 #include "rcdem/specimens/specimen.hpp"
+#include "rcdem/study/study.hpp"
 
 namespace fs = std::filesystem;
 
@@ -154,6 +155,31 @@ int calibrate(const fs::path& scenario_path, fs::path out, bool force, double si
   }
 }
 
+// A study directory is resumed (finished cases kept) when it holds a study.json; any other
+// non-empty directory is refused unless --force.
+int study(const std::string& name, fs::path scenarios, fs::path out, bool force, bool quick,
+          const std::vector<std::string>& cases) {
+  rcdem::StudyOptions o;
+  o.label = name + (quick ? " (quick)" : "");
+  o.scenarios = scenarios.empty() ? rcdem::builtin_study_scenarios(name, quick) : scenarios;
+  if (!fs::is_directory(o.scenarios))
+    rcdem::fail("--scenarios '{}': not a directory of scenarios", o.scenarios.string());
+  if (name == "three_point_bending") o.report_script = "study_report.py";
+  if (out.empty()) out = fs::path("results") / ("study_" + name + (quick ? "_quick" : ""));
+  o.out = out;
+  o.cases = cases;
+  o.force = force;
+  std::error_code ec;
+  if (fs::exists(out, ec) && !fs::exists(out / "study.json", ec) && !fs::is_empty(out, ec) &&
+      !force)
+    rcdem::fail(
+        "output directory '{}' is not empty and holds no study (study.json); use --force to "
+        "write into it",
+        out.string());
+  rcdem::io::prepare_output_directory(out, true);
+  return rcdem::run_study(o) == 0 ? 0 : 5;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -201,6 +227,22 @@ int main(int argc, char** argv) {
   cal->add_option("--iterations", iterations, "At most this many search iterations")
       ->check(CLI::Range(1, 50));
 
+  std::string study_name;
+  fs::path study_scenarios;
+  bool quick = false;
+  std::vector<std::string> cases;
+  auto* stc = app.add_subcommand(
+      "study", "Run a study's cases (resumable) and write its tables and figures");
+  stc->add_option("name", study_name, "Study: three_point_bending (paper 3, SPEC 10)")->required();
+  stc->add_option("-o,--output", out, "Study directory (default results/study_<name>[_quick])");
+  stc->add_flag("--quick", quick,
+                "Coarser particles and faster loading: the whole study in minutes (examples/<name>"
+                "/study/quick)");
+  stc->add_option("--cases", cases, "Run only these cases (e.g. AN0,AN2_NL-B)")->delimiter(',');
+  stc->add_option("--scenarios", study_scenarios,
+                  "A directory of scenarios to run instead of the built-in ones");
+  stc->add_flag("--force", force, "Rerun finished cases");
+
   auto* schema = app.add_subcommand("print-schema", "Print a documented scenario template");
 
   try {
@@ -215,6 +257,7 @@ int main(int argc, char** argv) {
     if (*cal)
             return calibrate(scenario, out, force, size, rate_factor, sets, target, tolerance, iterations,
                        peak_only);
+    if (*stc) return study(study_name, study_scenarios, out, force, quick, cases);
     if (*schema) {
       rcdem::io::scenario_schema().print_template(std::cout);
       return 0;

@@ -235,7 +235,7 @@ TEST(SolverSpecimen, HomogeneousStrainGivesUniformContactStrains) {
                                  std::abs(s.us.norm() - us_lin) / scale});
         const LocalPointConstants& k = net.constants[m];
         EXPECT_EQ(s.fn, k.kn * s.un);
-        f += -s.fn * cs.normal[c] + s.fs;
+        f += -s.fn * cs.normal[c] + cs.shear_force(c, m);
       }
       worst_force = std::max(worst_force, (cs.force_b[c] - f).norm() / (f.norm() + 1e-300));
     }

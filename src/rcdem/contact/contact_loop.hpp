@@ -33,31 +33,41 @@ void evaluate_contacts(const Law& law, const ContactNetwork& net, const Bodies& 
     } else {
       n = (x[b] - x[a]).normalized();
     }
-    const PlaneRotation rot{cs.normal[c].cross(n), (0.5 * dt * (w[a] + w[b]).dot(n)) * n, n};
+    // SPEC 4: the plane's frame turns with the contact, carrying every point's shear history.
+    const PlaneRotation rot{cs.normal[c], n, 0.5 * dt * (w[a] + w[b]).dot(n)};
     cs.normal[c] = n;
+    Vec3 t1 = rot.turn_frame_axis(cs.tangent[c]);
+    if (!(t1.squaredNorm() > 0.5)) t1 = any_perpendicular(n);  // only after a turn near 90 deg
+    cs.tangent[c] = t1;
+    const Vec3 t2 = n.cross(t1);
     const Eigen::Matrix3d ra = q[a].toRotationMatrix();
     const Eigen::Matrix3d rb = q[b].toRotationMatrix();
-    Vec3 f = Vec3::Zero(), tb = Vec3::Zero(), ta = Vec3::Zero();
+    // contact_kinematics.hpp: u_J is affine in r = p_J0 - x_A0, u_J = u0 + (R_B - R_A) r, and the
+    // point sits at x_A + R_A r + u_J / 2. Built from small differences only, so it keeps full
+    // precision far from the origin.
+    const Vec3 dx = x[b] - x[a];
+    const Vec3 u0 = dx - rb * (x0[b] - x0[a]);
+    const Eigen::Matrix3d dr = rb - ra;
+    Vec3 f = Vec3::Zero(), moment_a = Vec3::Zero();
     Real strain = 0.0, damage = 0.0, friction = 0.0;
     for (Index m = net.point_begin[c]; m < net.point_begin[c + 1]; ++m) {
-      const PointKinematics k =
-          point_kinematics(net.point_position0[m], x[a], x0[a], ra, x[b], x0[b], rb, n);
+      const Vec3 r = net.point_position0[m] - x0[a];
+      const Vec3 u = u0 + dr * r;
       LocalPointState& s = cs.point[m];
       const LocalPointConstants& pc = net.constants[m];
-      s.fs = rot.apply(s.fs);
-      s.us = rot.apply(s.us);
-      const LawResult r = law.update(pc, s, k.un - s.un, k.us - s.us);  // (1)-(2), SPEC 4-5
-      const Vec3 fp = -s.fn * n + s.fs;  // on B; tension (fn > 0) pulls B back towards A
+      const Vec3 us(u.dot(t1), u.dot(t2), 0.0);  // total shear displacement, in the frame
+      const LawResult res = law.update(pc, s, u.dot(n) - s.un, us - s.us);  // (1)-(2), SPEC 4-5
+      // On B; tension (fn > 0) pulls B back towards A.
+      const Vec3 fp = -s.fn * n + s.fs.x() * t1 + s.fs.y() * t2;
       f += fp;
-      tb += (k.position - x[b]).cross(fp);
-      ta -= (k.position - x[a]).cross(fp);
+      moment_a += (ra * r + 0.5 * u).cross(fp);
       strain += 0.5 * s.fn * s.fn / pc.kn + 0.5 * s.fs.squaredNorm() / pc.ks;
-      damage += r.dissipated - r.dissipated_friction;
-      friction += r.dissipated_friction;
+      damage += res.dissipated - res.dissipated_friction;
+      friction += res.dissipated_friction;
     }
     cs.force_b[c] = f;
-    cs.torque_b[c] = tb;
-    cs.torque_a[c] = ta;
+    cs.torque_b[c] = moment_a - dx.cross(f);
+    cs.torque_a[c] = -moment_a;
     cs.strain_energy[c] = strain;
     cs.dissipated_damage[c] = damage;
     cs.dissipated_friction[c] = friction;

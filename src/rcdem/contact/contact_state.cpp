@@ -1,6 +1,15 @@
 #include "rcdem/contact/contact_state.hpp"
 
+#include <cmath>
+
 namespace rcdem {
+
+Vec3 any_perpendicular(const Vec3& n) {
+  // Cross with the world axis least aligned with n: never degenerate.
+  const int k = std::abs(n.x()) < std::abs(n.y()) ? (std::abs(n.x()) < std::abs(n.z()) ? 0 : 2)
+                                                   : (std::abs(n.y()) < std::abs(n.z()) ? 1 : 2);
+  return n.cross(Vec3::Unit(k)).normalized();
+}
 
 void ContactState::init(const ContactNetwork& net, const std::vector<Vec3>& x,
                         const std::vector<Vec3>* anchor0, const std::vector<Vec3>* axis0) {
@@ -16,6 +25,8 @@ void ContactState::init(const ContactNetwork& net, const std::vector<Vec3>& x,
       normal[c] = (x[net.particle_b[c]] - x[net.particle_a[c]]).normalized();
     }
   }
+  tangent.resize(nc);
+  for (std::size_t c = 0; c < nc; ++c) tangent[c] = any_perpendicular(normal[c]);
   force_b.assign(nc, Vec3::Zero());
   torque_b.assign(nc, Vec3::Zero());
   torque_a.assign(nc, Vec3::Zero());

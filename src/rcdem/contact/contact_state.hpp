@@ -10,9 +10,16 @@
 
 namespace rcdem {
 
+// A unit vector perpendicular to the unit vector n.
+Vec3 any_perpendicular(const Vec3& n);
+
 struct ContactState {
   std::vector<LocalPointState> point;  // per local point
   std::vector<Vec3> normal;            // per contact: unit A -> B at the last evaluation
+  // Per contact: the first axis t1 of the contact plane's frame (t2 = n x t1). The frame turns
+  // with the contact (SPEC 4), and every point's shear vectors fs, us are kept as components
+  // (along t1, along t2, 0) in it: one frame rotated per contact instead of two vectors per point.
+  std::vector<Vec3> tangent;
 
   // Per contact, written by each evaluation.
   std::vector<Vec3> force_b;              // total force on B (on A: its opposite)
@@ -23,6 +30,13 @@ struct ContactState {
   std::vector<Real> dissipated_friction;  // during this step [J]
 
   // Normals at t = 0: centre to centre, or (with anchors) perpendicular to the bar's axis.
+  // A point's shear force and accumulated shear displacement in the world frame.
+  Vec3 shear_force(Index c, Index m) const { return to_world(c, point[m].fs); }
+  Vec3 shear_displacement(Index c, Index m) const { return to_world(c, point[m].us); }
+  Vec3 to_world(Index c, const Vec3& local) const {
+    return local.x() * tangent[c] + local.y() * normal[c].cross(tangent[c]);
+  }
+
   void init(const ContactNetwork& net, const std::vector<Vec3>& positions,
             const std::vector<Vec3>* anchor0 = nullptr, const std::vector<Vec3>* axis0 = nullptr);
 };

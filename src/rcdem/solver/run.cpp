@@ -11,6 +11,7 @@
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
 #include "rcdem/io/atomic_file.hpp"
+#include "rcdem/io/crack_record.hpp"
 #include "rcdem/io/plot_tool.hpp"
 #include "rcdem/io/run_output.hpp"
 #include "rcdem/io/specimen_output.hpp"
@@ -111,6 +112,7 @@ RunSummary run_scenario(const Scenario& sc, const std::filesystem::path& out,
 
   io::History history(sim, sc.control_plate.empty() ? sc.control_bar : sc.control_plate);
   io::SnapshotWriter snapshots(out, sc.output.binary_vtu, sc.output.write_facets);
+  io::CrackRecord cracks(sim);
   snapshots.write(sim);
   history.record(sim);
 
@@ -131,7 +133,10 @@ RunSummary run_scenario(const Scenario& sc, const std::filesystem::path& out,
       r.kinetic_over_strain_at_peak = strain > 0.0 ? sim.energy().kinetic / strain : 0.0;
     }
     const std::int64_t n = sim.steps();
-    if (n % history_every == 0) history.record(sim);
+    if (n % history_every == 0) {
+      history.record(sim);
+      cracks.update(sim, control_displacement(), load);
+    }
     if (n % snapshot_every == 0) {
       snapshots.write(sim);
       history.write(out / "history.csv");
@@ -165,8 +170,10 @@ RunSummary run_scenario(const Scenario& sc, const std::filesystem::path& out,
   if (!quiet && tty) fmt::print(stderr, "\n");
   if (history.rows() == 0 || history.data().back()[0] != static_cast<double>(sim.steps()))
     history.record(sim);
+  cracks.update(sim, control_displacement(), control_load());
   snapshots.write(sim);
   history.write(out / "history.csv");
+  cracks.write(out / "broken_points.csv");
 
   r.steps = sim.steps();
   r.time = sim.time();
@@ -195,6 +202,7 @@ RunSummary run_scenario(const Scenario& sc, const std::filesystem::path& out,
                  {"balance_error", e.balance_error()}};
   j["damaged_points"] = sim.damaged_points();
   j["broken_points"] = sim.broken_points();
+  j["first_cracking"] = cracks.first_cracking();
   j["local_points"] = sim.specimen().contacts.point_count();
   j["specimen"] = io::specimen_summary(sc, sim.specimen());
   const double loop =

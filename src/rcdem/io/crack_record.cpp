@@ -1,0 +1,54 @@
+#include "rcdem/io/crack_record.hpp"
+
+#include <fmt/format.h>
+
+#include "rcdem/io/atomic_file.hpp"
+#include "rcdem/solver/simulation.hpp"
+
+namespace rcdem::io {
+
+CrackRecord::CrackRecord(const Simulation& sim)
+    : broken_(sim.contacts().point.size(), std::uint8_t{0}) {}
+
+void CrackRecord::update(const Simulation& sim, Real deflection, Real load) {
+  const auto& pts = sim.contacts().point;
+  const ContactNetwork& net = sim.specimen().contacts;
+  for (std::size_t m = 0; m < pts.size(); ++m) {
+    if (broken_[m] || pts[m].damage < 1.0) continue;
+    broken_[m] = 1;
+    rows_.push_back({net.point_position0[m], net.point_area[m], sim.steps(), deflection, load});
+  }
+}
+
+void CrackRecord::write(const std::filesystem::path& path) const {
+  std::string out = "x_m,y_m,z_m,area_m2,step,deflection_m,load_N\n";
+  for (const auto& r : rows_)
+    out += fmt::format("{:.6g},{:.6g},{:.6g},{:.6g},{},{:.8g},{:.8g}\n", r.position.x(),
+                       r.position.y(), r.position.z(), r.area, r.step, r.deflection, r.load);
+  write_file_atomically(path, out);
+}
+
+nlohmann::json CrackRecord::first_cracking() const {
+  if (rows_.empty()) return nullptr;
+  const std::int64_t step = rows_.front().step;
+  Vec3 centroid = Vec3::Zero();
+  Real area = 0.0;
+  nlohmann::json positions = nlohmann::json::array();
+  std::size_t count = 0;
+  for (const auto& r : rows_) {
+    if (r.step != step) break;
+    ++count;
+    centroid += r.area * r.position;
+    area += r.area;
+    if (positions.size() < 50) positions.push_back({r.position.x(), r.position.y(), r.position.z()});
+  }
+  centroid /= area;
+  return {{"step", step},
+          {"deflection_m", rows_.front().deflection},
+          {"load_N", rows_.front().load},
+          {"points", count},
+          {"centroid_m", {centroid.x(), centroid.y(), centroid.z()}},
+          {"positions_m", positions}};
+}
+
+}  // namespace rcdem::io

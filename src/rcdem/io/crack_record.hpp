@@ -1,0 +1,46 @@
+#pragma once
+// Where and when the concrete's local points broke (D reached 1): the first cracking location and
+// the growth of the cracks (SPEC 10: "cracking starts at the bottom near midspan and rises toward
+// the load"), read off one small file instead of a facet snapshot at every step.
+#include <cstdint>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "rcdem/core/types.hpp"
+
+namespace rcdem {
+class Simulation;
+}
+
+namespace rcdem::io {
+
+class CrackRecord {
+ public:
+  explicit CrackRecord(const Simulation& sim);
+
+  // Appends the points that broke since the last call, stamped with the step and the control's
+  // deflection and load: the resolution is the spacing of the calls (the history's).
+  void update(const Simulation& sim, Real deflection, Real load);
+
+  // broken_points.csv: x_m,y_m,z_m,area_m2,step,deflection_m,load_N, in the order they broke.
+  void write(const std::filesystem::path& path) const;
+
+  // The first points to break: step, deflection, load, count, their area-weighted centroid and
+  // their positions (at most 50); null if none broke.
+  nlohmann::json first_cracking() const;
+
+  std::size_t size() const { return rows_.size(); }
+
+ private:
+  struct Row {
+    Vec3 position;
+    Real area;
+    std::int64_t step;
+    Real deflection, load;
+  };
+  std::vector<std::uint8_t> broken_;
+  std::vector<Row> rows_;
+};
+
+}  // namespace rcdem::io

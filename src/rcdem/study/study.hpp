@@ -1,0 +1,28 @@
+#pragma once
+// A study: a directory of scenarios run one after another into one output directory, resumable
+// (a case with a summary.json is finished and is not rerun), then summarised by a report script.
+// The paper's three-point bending study (SPEC 10, Table 3) is the built-in one.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace rcdem {
+
+struct StudyOptions {
+  std::filesystem::path scenarios;   // directory of *.toml, one per case
+  std::filesystem::path out;         // DIR: DIR/cases/<case>/ per case, tables and figures in DIR
+  std::vector<std::string> cases;    // run only these (scenario stems); empty: all
+  std::string report_script;         // tools/<script> run on DIR at the end ("" for none)
+  std::string label;                 // what the study is, for study.json and messages
+  bool force = false;                // rerun finished cases
+};
+
+// Where a built-in study's scenarios live: examples/<name>/study (quick: .../study/quick), from
+// the working directory or from the source tree rcdem was built from. Fails with the list of
+// known studies if `name` is none of them.
+std::filesystem::path builtin_study_scenarios(const std::string& name, bool quick);
+
+// Runs the study; returns the number of cases that failed (0: all finished).
+int run_study(const StudyOptions& options);
+
+}  // namespace rcdem
