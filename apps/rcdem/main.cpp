@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <thread>
 
 #include "rcdem/calibration/calibrate.hpp"
 #include "rcdem/core/error.hpp"
@@ -158,7 +159,7 @@ int calibrate(const fs::path& scenario_path, fs::path out, bool force, double si
 // A study directory is resumed (finished cases kept) when it holds a study.json; any other
 // non-empty directory is refused unless --force.
 int study(const std::string& name, fs::path scenarios, fs::path out, bool force, bool quick,
-          const std::vector<std::string>& cases) {
+          const std::vector<std::string>& cases, int jobs) {
   rcdem::StudyOptions o;
   o.label = name + (quick ? " (quick)" : "");
   o.scenarios = scenarios.empty() ? rcdem::builtin_study_scenarios(name, quick) : scenarios;
@@ -169,6 +170,10 @@ int study(const std::string& name, fs::path scenarios, fs::path out, bool force,
   o.out = out;
   o.cases = cases;
   o.force = force;
+  // Quick cases are small: one per core, one thread each, beats one case on every core.
+  const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  o.jobs = jobs > 0 ? jobs : quick ? cores : 1;
+  o.threads_per_job = std::max(1, cores / o.jobs);
   std::error_code ec;
   if (fs::exists(out, ec) && !fs::exists(out / "study.json", ec) && !fs::is_empty(out, ec) &&
       !force)
@@ -242,6 +247,10 @@ int main(int argc, char** argv) {
   stc->add_option("--scenarios", study_scenarios,
                   "A directory of scenarios to run instead of the built-in ones");
   stc->add_flag("--force", force, "Rerun finished cases");
+  int jobs = 0;
+  stc->add_option("-j,--jobs", jobs,
+                  "Cases run side by side (default: one per core with --quick, else 1)")
+      ->check(CLI::Range(1, 64));
 
   auto* schema = app.add_subcommand("print-schema", "Print a documented scenario template");
 
@@ -257,7 +266,7 @@ int main(int argc, char** argv) {
     if (*cal)
             return calibrate(scenario, out, force, size, rate_factor, sets, target, tolerance, iterations,
                        peak_only);
-    if (*stc) return study(study_name, study_scenarios, out, force, quick, cases);
+    if (*stc) return study(study_name, study_scenarios, out, force, quick, cases, jobs);
     if (*schema) {
       rcdem::io::scenario_schema().print_template(std::cout);
       return 0;

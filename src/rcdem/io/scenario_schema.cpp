@@ -133,10 +133,10 @@ Schema build() {
   s.key(real(
       "solver.mass_scaling", 1.0, Range{1.0, 1.0e8}, "",
       "Multiply every mass and inertia by this (a larger stable step for quasi-static runs)."));
-  s.key(real("solver.bar_torsion_inertia_scaling", 1.0, Range{1.0, 1.0e4}, "",
-             "Multiply the bars' cylinders' moment of inertia about their axis by this: the "
-             "bars' torsion can set the time step, and a quasi-static result does not depend on "
-             "it."));
+  s.key(real("solver.bar_rotational_inertia_scaling", 1.0, Range{1.0, 1.0e4}, "",
+             "Multiply the moments of inertia of the bars' cylinders by this: with coarse "
+             "particles the bars' rotation (torsion, then bending) sets the time step, and a "
+             "quasi-static result does not depend on it."));
 
   s.section("plates", "Rigid plates: one [plates.NAME] table per plate, NAME of your choice.");
   s.section("plates.*",

@@ -74,9 +74,9 @@ RunSummary run_scenario(const Scenario& sc, const std::filesystem::path& out,
   const bool quiet = Progress::quiet_default();
   if (!quiet)
     fmt::print(stderr,
-               "time step {:.4g} s (stable estimate {:.4g} s, safety {}); {} bodies, {} "
-               "contacts, {} local points, {} plate contacts\n",
-               sim.time_step(), sim.stable_time_step(),
+               "time step {:.4g} s (stable estimate {:.4g} s, set by {}; safety {}); {} bodies, "
+               "{} contacts, {} local points, {} plate contacts\n",
+               sim.time_step(), sim.stable_time_step(), sim.stable_time_step_limit(),
                sc.solver.time_step > 0.0 ? sc.solver.time_step / sim.stable_time_step()
                                          : sc.solver.dt_safety,
                sim.bodies().size(), sim.specimen().contacts.contact_count(),
@@ -187,6 +187,7 @@ RunSummary run_scenario(const Scenario& sc, const std::filesystem::path& out,
   j["time_s"] = r.time;
   j["time_step_s"] = sim.time_step();
   j["stable_time_step_s"] = sim.stable_time_step();
+  j["stable_time_step_set_by"] = sim.stable_time_step_limit();
   j["control"] = sc.control_plate.empty() ? sc.control_bar : sc.control_plate;
   j["peak_load_N"] = r.peak_load;
   j["displacement_at_peak_m"] = r.displacement_at_peak;

@@ -23,7 +23,7 @@ Simulation::Simulation(const Scenario& sc, Specimen specimen)
   for (const Bar& bar : specimen_.bars)
     for (const auto& cyl : bar.cylinders) {
       CylinderInertia in = solid_cylinder_inertia(bar.diameter, cyl.length, bar.steel.density);
-      in.principal_inertia.z() *= sc.solver.bar_torsion_inertia_scaling;
+      in.principal_inertia *= sc.solver.bar_rotational_inertia_scaling;
       add_body(bodies_, cyl.centre, sc.solver.mass_scaling * in.mass,
                sc.solver.mass_scaling * in.principal_inertia, orientation_for_axis(cyl.axis),
                0.5 * bar.diameter);
@@ -144,10 +144,22 @@ void Simulation::compute_stable_time_step() {
       kr[i] += Vec3(ns.rotation_transverse, ns.rotation_transverse, ns.rotation_axial);
     }
   Real dt = std::numeric_limits<Real>::infinity();
+  const auto limit = [&](Real t, std::size_t i, int what) {
+    if (t >= dt) return;
+    dt = t;
+    const bool cylinder = static_cast<Index>(i) >= specimen_.concrete();
+    static const char* const kWhat[] = {"translation", "rotation about body axis x",
+                                        "rotation about body axis y", "rotation about body axis z"};
+    static const char* const kCylinder[] = {"translation", "bending rotation", "bending rotation",
+                                            "torsion"};
+    stable_dt_limit_ =
+        fmt::format("{} {} ({})", cylinder ? "bar cylinder" : "particle", i,
+                    cylinder ? kCylinder[what] : kWhat[what]);
+  };
   for (std::size_t i = 0; i < n; ++i) {
-    if (k[i] > 0.0) dt = std::min(dt, std::sqrt(bodies_.mass[i] / k[i]));
+    if (k[i] > 0.0) limit(std::sqrt(bodies_.mass[i] / k[i]), i, 0);
     for (int a = 0; a < 3; ++a)
-      if (kr[i][a] > 0.0) dt = std::min(dt, std::sqrt(bodies_.inertia[i][a] / kr[i][a]));
+      if (kr[i][a] > 0.0) limit(std::sqrt(bodies_.inertia[i][a] / kr[i][a]), i, a + 1);
   }
   if (!std::isfinite(dt)) fail("the specimen has no contact: no time step can be estimated");
   stable_dt_ = dt;

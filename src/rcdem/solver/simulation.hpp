@@ -42,6 +42,8 @@ class Simulation {
 
   // min over bodies of sqrt(m / sum k) and sqrt(I / sum k r^2) (SPEC 6).
   Real stable_time_step() const { return stable_dt_; }
+  // Which body and motion set the stable estimate, in words.
+  const std::string& stable_time_step_limit() const { return stable_dt_limit_; }
   Real time_step() const { return dt_; }
   void set_time_step(Real dt) { dt_ = dt; }  // for tests that probe stability
   Real time() const { return time_; }
@@ -107,6 +109,7 @@ class Simulation {
   std::vector<Real> pulled_force_prev_;
   Real damping_;
   Real dt_ = 0.0, stable_dt_ = 0.0;
+  std::string stable_dt_limit_;
   Real time_ = 0.0;
   std::int64_t steps_ = 0;
   Energy energy_;

@@ -2,9 +2,16 @@
 
 #include <fmt/format.h>
 
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
-#include <chrono>
+#include <cerrno>
+#include <cstring>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 
@@ -98,6 +105,45 @@ void write_tables(const fs::path& out, const std::vector<CaseRecord>& cases,
   io::write_file_atomically(out / "study.json", study.dump(2) + "\n");
 }
 
+// `rcdem --quiet run SCENARIO -o DIR --force` as a child process, output to DIR/run.log.
+pid_t spawn_run(const fs::path& scenario, const fs::path& dir, int threads) {
+  const std::string exe = fs::read_symlink("/proc/self/exe").string();
+  const std::string log = (dir / "run.log").string();
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  std::vector<std::string> args = {exe, "run", scenario.string(), "-o", dir.string(), "--force"};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  std::vector<std::string> env_store;
+  for (char** e = environ; *e; ++e)
+    if (std::strncmp(*e, "OMP_NUM_THREADS=", 16) != 0) env_store.emplace_back(*e);
+  env_store.push_back(fmt::format("OMP_NUM_THREADS={}", threads));
+  std::vector<char*> envp;
+  for (auto& e : env_store) envp.push_back(e.data());
+  envp.push_back(nullptr);
+  pid_t pid = 0;
+  const int err = posix_spawn(&pid, exe.c_str(), &actions, nullptr, argv.data(), envp.data());
+  posix_spawn_file_actions_destroy(&actions);
+  if (err != 0) fail("cannot start a run for {}: {}", scenario.string(), std::strerror(err));
+  return pid;
+}
+
+std::string last_line(const fs::path& file) {
+  std::ifstream in(file);
+  std::string line, last = "no output (see " + file.string() + ")";
+  while (std::getline(in, line)) {
+    // Progress lines end in carriage returns on a terminal; keep the last real message.
+    const auto cr = line.find_last_of('\r');
+    if (cr != std::string::npos) line = line.substr(cr + 1);
+    if (!line.empty()) last = line;
+  }
+  return last;
+}
+
 }  // namespace
 
 fs::path builtin_study_scenarios(const std::string& name, bool quick) {
@@ -140,48 +186,97 @@ int run_study(const StudyOptions& o) {
 
   const bool quiet = Progress::quiet_default();
   std::vector<CaseRecord> records;
-  int failed = 0;
+  std::vector<std::size_t> pending;
   for (std::size_t i = 0; i < todo.size(); ++i) {
     const auto& [file, sc] = todo[i];
     CaseRecord rec;
     rec.name = file.stem().string();
     rec.model = rec.name.substr(0, rec.name.find('_'));
     rec.interface = interface_name(sc);
-    const fs::path dir = o.out / "cases" / rec.name;
-    const fs::path summary = dir / "summary.json";
+    rec.status = "not run";
+    const fs::path summary = o.out / "cases" / rec.name / "summary.json";
     if (fs::exists(summary) && !o.force) {
       rec.summary = read_json(summary);
       rec.status = "finished";
       if (!quiet)
-        fmt::print(stderr, "[{}/{}] {}: finished earlier (peak {:.4g} kN), not rerun\n", i + 1,
-                   todo.size(), rec.name, rec.summary.value("peak_load_N", 0.0) / 1e3);
+        fmt::print(stderr, "{}: finished earlier (peak {:.4g} kN), not rerun\n", rec.name,
+                   rec.summary.value("peak_load_N", 0.0) / 1e3);
     } else {
-      // A directory without summary.json is a run that was interrupted: it starts again.
-      if (fs::exists(dir)) fs::remove_all(dir, ec);
-      if (ec) fail("{}: cannot clear the interrupted case: {}", dir.string(), ec.message());
-      fs::create_directories(dir);
+      pending.push_back(i);
+    }
+    records.push_back(std::move(rec));
+  }
+  write_tables(o.out, records, o);
+
+  int failed = 0;
+  std::size_t done = 0;
+  // A directory without summary.json is a run that was interrupted: it starts again.
+  const auto prepare = [&](std::size_t i) {
+    const fs::path dir = o.out / "cases" / records[i].name;
+    std::error_code e;
+    if (fs::exists(dir)) fs::remove_all(dir, e);
+    if (e) fail("{}: cannot clear the interrupted case: {}", dir.string(), e.message());
+    fs::create_directories(dir);
+    return dir;
+  };
+  const auto finish = [&](std::size_t i, const std::string& error) {
+    CaseRecord& rec = records[i];
+    ++done;
+    if (error.empty()) {
+      rec.summary = read_json(o.out / "cases" / rec.name / "summary.json");
+      rec.status = "finished";
       if (!quiet)
-        fmt::print(stderr, "[{}/{}] {}: running ({})\n", i + 1, todo.size(), rec.name,
-                   file.string());
+        fmt::print(stderr, "[{}/{}] {}: finished, peak {:.4g} kN, {:.0f} s\n", done,
+                   pending.size(), rec.name, rec.summary.value("peak_load_N", 0.0) / 1e3,
+                   rec.summary.value("seconds", 0.0));
+    } else {
+      // One case failing (an instability, say) should not cost the others.
+      rec.status = "failed";
+      rec.error = error;
+      ++failed;
+      fmt::print(stderr, "[{}/{}] {}: failed: {}\n", done, pending.size(), rec.name, error);
+    }
+    write_tables(o.out, records, o);  // after every case, so a stopped study keeps its table
+  };
+
+  if (o.jobs <= 1) {
+    for (const std::size_t i : pending) {
+      const fs::path dir = prepare(i);
+      if (!quiet)
+        fmt::print(stderr, "{}: running ({})\n", records[i].name, todo[i].first.string());
       try {
-        run_scenario(sc, dir);
-        rec.summary = read_json(summary);
-        rec.status = "finished";
+        run_scenario(todo[i].second, dir);
+        finish(i, "");
       } catch (const Error& e) {
-        // One case failing (an instability, say) should not cost the others.
-        rec.status = "failed";
-        rec.error = e.what();
-        ++failed;
-        fmt::print(stderr, "{}: failed: {}\n", rec.name, e.what());
+        finish(i, e.what());
       }
     }
-    records.push_back(rec);
-    std::vector<CaseRecord> all = records;
-    for (std::size_t k = i + 1; k < todo.size(); ++k)
-      all.push_back({todo[k].first.stem().string(),
-                     todo[k].first.stem().string().substr(0, todo[k].first.stem().string().find('_')),
-                     interface_name(todo[k].second), "not run", {}, {}});
-    write_tables(o.out, all, o);  // after every case, so that a stopped study still has its table
+  } else {
+    // Cases side by side, each a child `rcdem run` with its share of the threads: small
+    // specimens scale better across processes than across threads.
+    std::map<pid_t, std::size_t> running;
+    std::size_t next = 0;
+    while (next < pending.size() || !running.empty()) {
+      while (next < pending.size() && static_cast<int>(running.size()) < o.jobs) {
+        const std::size_t i = pending[next++];
+        const fs::path dir = prepare(i);
+        if (!quiet)
+          fmt::print(stderr, "{}: started ({}; log {})\n", records[i].name,
+                     todo[i].first.string(), (dir / "run.log").string());
+        running[spawn_run(todo[i].first, dir, o.threads_per_job)] = i;
+      }
+      int status = 0;
+      const pid_t pid = ::waitpid(-1, &status, 0);
+      if (pid < 0) fail("waiting for the study's runs: {}", std::strerror(errno));
+      const auto it = running.find(pid);
+      if (it == running.end()) continue;
+      const std::size_t i = it->second;
+      running.erase(it);
+      const fs::path dir = o.out / "cases" / records[i].name;
+      const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0 &&
+                      fs::exists(dir / "summary.json");
+      finish(i, ok ? "" : last_line(dir / "run.log"));
+    }
   }
   if (!o.report_script.empty()) io::run_plot_tool(o.report_script, o.out);
   if (!quiet)

@@ -15,6 +15,8 @@ struct StudyOptions {
   std::string report_script;         // tools/<script> run on DIR at the end ("" for none)
   std::string label;                 // what the study is, for study.json and messages
   bool force = false;                // rerun finished cases
+  int jobs = 1;                      // cases run side by side (child processes) when > 1
+  int threads_per_job = 1;           // OpenMP threads of each child
 };
 
 // Where a built-in study's scenarios live: examples/<name>/study (quick: .../study/quick), from
