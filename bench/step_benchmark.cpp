@@ -1,0 +1,212 @@
+// Times Simulation::step() on a scenario's specimen and turns the time into throughput and memory
+// bandwidth (issue: bench/ throughput and bandwidth, YADE side by side).
+//
+// Usage: rcdem_step_bench SCENARIO.toml STEPS
+//   Generates the specimen (not timed), runs 50 warm-up steps, then times STEPS calls of step()
+//   with steady_clock. Stop rules, history and snapshots are not involved (this is the step alone).
+// Prints one line of key=value pairs (scenario, threads, bodies, contacts, local_points, steps,
+// seconds, steps_per_s, particle_steps_per_s, contact_steps_per_s, local_point_steps_per_s,
+// bytes_per_step, bytes_per_local_point, achieved_GBps) and a second line starting "# bytes:" with
+// the breakdown of bytes_per_step (see bytes_per_step() below for the model and every term).
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <exception>
+#include <string>
+
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
+
+#include "rcdem/core/error.hpp"
+#include "rcdem/core/progress.hpp"
+#include "rcdem/io/scenario.hpp"
+#include "rcdem/solver/simulation.hpp"
+#include "rcdem/specimens/specimen.hpp"
+
+namespace {
+
+using rcdem::Index;
+using rcdem::Quat;
+using rcdem::Real;
+using rcdem::Vec3;
+
+// Bytes one step moves, COUNTED from the arrays Simulation::step() touches (a model, not a
+// hardware counter). The model: every array a kernel of the step (contact loop, plate contacts,
+// gather, integration, energy ledger) reads is counted once per kernel at its element size times
+// its length, every array it writes likewise, an array both read and written twice. Body arrays
+// gathered per contact (position, orientation, ... of A and B) are counted once per body per
+// kernel, as if the repeated visits hit cache (10k bodies x ~0.6 kB fit in L2/L3); an array
+// written in one kernel and read in a later one (force_b, energies) is counted in both. Arrays
+// the step does not touch (distance0, facet_area, point_area, particles) are not counted. This is
+// therefore the compulsory traffic: the least DRAM traffic a step could cause with these layouts.
+//
+// Per local point (concrete network), contact loop (contact_loop.hpp):
+//   point_position0  Vec3                  read             24
+//   constants        LocalPointConstants   read             32
+//   point (state)    LocalPointState       read + write     2 x 88
+//                                                           = 232
+// Per contact (concrete network):
+//   contact loop: particle_a, particle_b   Index x 2 read     16
+//                 point_begin              Index read          8
+//                 normal                   Vec3 read + write  48
+//                 force_b, torque_b, torque_a  3 Vec3 write   72
+//                 strain_energy, dissipated_damage, dissipated_friction  3 Real write  24
+//   gather (Simulation::gather_forces, BodyContacts CSR):
+//                 entry                    Index x 2 (one per side) read  16
+//                 force_b, torque_b, torque_a  3 Vec3 read    72  (force_b is read by both
+//                                          sides; counted once, the second visit is cached)
+//   energy ledger: the 3 energies          3 Real read        24
+//                                                           = 280
+// Per body (all bodies: concrete spheres and the bars' cylinders):
+//   contact loop: position, position0, angular_velocity  3 Vec3 read  72; orientation Quat read 32
+//   gather:       begin Index read 8; force, torque  2 Vec3 write  48
+//   integrate:    velocity, angular_velocity, angular_momentum, position  4 Vec3 read + write 192
+//                 orientation Quat read + write 64; orientation0 Quat read 32
+//                 force, torque, inertia  3 Vec3 read 72; mass Real read 8; radius Real read 8
+//                 driven  int64 read 8; damping_work, kinetic  2 Real write 16; jumped  uint8 write 1
+//   instability check: jumped read 1
+//   energy ledger: damping_work, kinetic  2 Real read 16
+//                                                           = 578
+// Per plate contact (solver/plates.cpp; one per boundary face under a plate's face):
+//   evaluate: plate int r 4, particle Index r 8, point0 Vec3 r 24, constants r 32,
+//             state LocalPointState r+w 176, force + torque Vec3 w 48, strain + friction Real w 16,
+//             active uint8 r+w 2, body position + position0 Vec3 r 48 + orientation Quat r 32
+//   reaction sum: plate 4, force 24, active 1;  gather: particle 8, force + torque 48, the body's
+//   force + torque r+w 96;  energy ledger: strain + friction 16                 = 587
+// Per interface contact (bars, SPEC 8; each one's particle A is a distinct concrete particle):
+//   contact loop: particle_a/b 16, point_begin 8, anchor0 Vec3 r 24, normal r+w 48,
+//                 force_b/torque_b/torque_a w 72, 3 energies w 24, body A position, position0,
+//                 angular_velocity, orientation r 104 (B is a cylinder: few, cached)
+//   gather (serial): particle_a/b 16, force_b/torque_b/torque_a r 72, A's force + torque r+w 96
+//   energy ledger: 3 energies r 24                                               = 504
+//   and per interface local point the same 232 as a concrete one.
+// Per interaction node: node loop: NodeRef r, InteractionNode r, NodeState r+w, NodeForces w,
+//   A's and B's position + orientation r 112; gather: NodeRef r, NodeForces r, A's and B's
+//   force + torque r+w 192; energy: InteractionNode r, NodeState r, NodeForces.dissipated r 8.
+struct ByteCount {
+  double per_local_point = 0, per_contact = 0, per_body = 0, per_plate_contact = 0,
+         per_interface_contact = 0, per_node = 0;
+  double local_points = 0, contacts = 0, bodies = 0, plate_contacts = 0, interface_contacts = 0,
+         interface_points = 0, nodes = 0;
+  double points_total() const { return per_local_point * local_points; }
+  double contacts_total() const { return per_contact * contacts; }
+  double bodies_total() const { return per_body * bodies; }
+  double plates_total() const { return per_plate_contact * plate_contacts; }
+  double interfaces_total() const {
+    return per_interface_contact * interface_contacts + per_local_point * interface_points;
+  }
+  double nodes_total() const { return per_node * nodes; }
+  double total() const {
+    return points_total() + contacts_total() + bodies_total() + plates_total() +
+           interfaces_total() + nodes_total();
+  }
+};
+
+ByteCount count_bytes(const rcdem::Simulation& sim) {
+  constexpr double V = sizeof(Vec3), Q = sizeof(Quat), R = sizeof(Real), I = sizeof(Index);
+  constexpr double LPS = sizeof(rcdem::LocalPointState);
+  constexpr double LPC = sizeof(rcdem::LocalPointConstants);
+  ByteCount b;
+  b.per_local_point = V + LPC + 2 * LPS;
+  b.per_contact = (2 * I + I + 2 * V + 3 * V + 3 * R)  // contact loop
+                  + (2 * I + 3 * V)                    // gather: CSR entries, force and torques
+                  + 3 * R;                             // energy ledger
+  b.per_body = (3 * V + Q)                                                    // contact loop
+               + (I + 2 * V)                                                  // gather
+               + (4 * 2 * V + 2 * Q + Q + 3 * V + 2 * R + sizeof(std::int64_t) + 2 * R +
+                  sizeof(std::uint8_t))                                       // integrate
+               + sizeof(std::uint8_t)                                         // instability check
+               + 2 * R;                                                       // energy ledger
+  b.per_plate_contact = (sizeof(int) + I + V + LPC + 2 * LPS + 2 * V + 2 * R +
+                         2 * sizeof(std::uint8_t) + 2 * V + Q)  // evaluate
+                        + (sizeof(int) + V + sizeof(std::uint8_t))  // reaction sum
+                        + (I + 2 * V + 2 * 2 * V)                   // gather
+                        + 2 * R;                                    // energy ledger
+  b.per_interface_contact = (2 * I + I + V + 2 * V + 3 * V + 3 * R + 3 * V + Q)  // contact loop
+                            + (2 * I + 3 * V + 2 * 2 * V)                        // gather
+                            + 3 * R;                                             // energy
+  using NodeRef = rcdem::Simulation::NodeRef;
+  constexpr double NR = sizeof(NodeRef), NC = sizeof(rcdem::InteractionNode),
+                   NS = sizeof(rcdem::NodeState), NF = sizeof(rcdem::NodeForces);
+  b.per_node = (NR + NC + 2 * NS + NF + 2 * (V + Q))  // node loop
+               + (NR + NF + 2 * 2 * 2 * V)            // gather
+               + (NC + NS + R);                       // energy ledger
+
+  const rcdem::Specimen& sp = sim.specimen();
+  b.local_points = static_cast<double>(sp.contacts.point_count());
+  b.contacts = static_cast<double>(sp.contacts.contact_count());
+  b.bodies = static_cast<double>(sim.bodies().size());
+  b.plate_contacts = static_cast<double>(sim.plate_contacts().size());
+  for (const auto& ic : sp.interfaces) {
+    b.interface_contacts += static_cast<double>(ic.net.contact_count());
+    b.interface_points += static_cast<double>(ic.net.point_count());
+  }
+  b.nodes = static_cast<double>(sim.nodes().size());
+  return b;
+}
+
+}  // namespace
+
+// The bytes one step moves (see count_bytes above for every term).
+double bytes_per_step(const rcdem::Simulation& sim) { return count_bytes(sim).total(); }
+
+int main(int argc, char** argv) {
+  if (argc != 3) {
+    std::fprintf(stderr, "usage: rcdem_step_bench SCENARIO.toml STEPS\n");
+    return 1;
+  }
+  const std::string path = argv[1];
+  const long steps = std::stol(argv[2]);
+  if (steps <= 0) {
+    std::fprintf(stderr, "rcdem_step_bench: STEPS must be > 0\n");
+    return 1;
+  }
+  rcdem::Progress::set_quiet_default(true);  // no generation progress lines among the results
+  try {
+    const auto g0 = std::chrono::steady_clock::now();
+    const rcdem::Scenario sc = rcdem::load_scenario(path);
+    rcdem::Simulation sim(sc, rcdem::build_specimen(sc));
+    const double setup_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - g0).count();
+    for (int k = 0; k < 50; ++k) sim.step();  // warm-up: caches, pages, branch history
+    const auto t0 = std::chrono::steady_clock::now();
+    for (long k = 0; k < steps; ++k) sim.step();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+    int threads = 1;
+#if defined(_OPENMP)
+    threads = omp_get_max_threads();
+#endif
+    const ByteCount bc = count_bytes(sim);
+    const double bytes = bytes_per_step(sim);
+    const auto bodies = static_cast<double>(sim.bodies().size());
+    const auto contacts = static_cast<double>(sim.specimen().contacts.contact_count());
+    const auto points = static_cast<double>(sim.specimen().contacts.point_count());
+    const double rate = static_cast<double>(steps) / seconds;
+    std::printf(
+        "scenario=%s threads=%d bodies=%.0f contacts=%.0f local_points=%.0f steps=%ld "
+        "seconds=%.4f steps_per_s=%.3f particle_steps_per_s=%.4g contact_steps_per_s=%.4g "
+        "local_point_steps_per_s=%.4g bytes_per_step=%.0f bytes_per_local_point=%.1f "
+        "achieved_GBps=%.3f setup_seconds=%.2f\n",
+        path.c_str(), threads, bodies, contacts, points, steps, seconds, rate, rate * bodies,
+        rate * contacts, rate * points, bytes, bytes / points, bytes * rate * 1e-9, setup_s);
+    std::printf(
+        "# bytes: per_local_point=%.0f x %.0f = %.4g; per_contact=%.0f x %.0f = %.4g; "
+        "per_body=%.0f x %.0f = %.4g; plates=%.0f x %.0f = %.4g; interfaces=%.0f x %.0f "
+        "+ %.0f x %.0f points = %.4g; nodes=%.0f x %.0f = %.4g; total=%.4g\n",
+        bc.per_local_point, bc.local_points, bc.points_total(), bc.per_contact, bc.contacts,
+        bc.contacts_total(), bc.per_body, bc.bodies, bc.bodies_total(), bc.per_plate_contact,
+        bc.plate_contacts, bc.plates_total(), bc.per_interface_contact, bc.interface_contacts,
+        bc.per_local_point, bc.interface_points, bc.interfaces_total(), bc.per_node, bc.nodes,
+        bc.nodes_total(), bc.total());
+  } catch (const rcdem::Error& e) {
+    std::fprintf(stderr, "rcdem_step_bench: %s\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "rcdem_step_bench: internal error: %s\n", e.what());
+    return 3;
+  }
+  return 0;
+}

@@ -1,0 +1,121 @@
+#!/usr/bin/env bash
+# Throughput and memory bandwidth of the step, with a STREAM-triad figure from the same run and
+# YADE's concrete model side by side (issue: benchmarks in bench/).
+#
+# Usage:
+#   bash bench/throughput.sh [STEPS=500] [BUILD_DIR=build]
+#     1. header: date, nproc, CPU model;
+#     2. STREAM triad (build/bench/rcdem_stream) at each rcdem thread count;
+#     3. rcdem_step_bench, STEPS timed steps after 50 warm-up ones, on the 160 mm cube
+#        (examples/uniaxial/compression.toml, used as is: the step bench ignores stop rules) and on
+#        the AN4 NL-B beam (examples/three_point_bending/study/AN4_NL-B.toml, in place: it includes
+#        a file by a relative path), at 1 and 2 threads: particle-, contact-, local-point-steps/s,
+#        counted bytes per step (the "# bytes:" line), achieved GB/s and fraction_of_stream;
+#     4. YADE CpmMat (bench/yade_cpm.py) on as many spheres as the cube has particles, STEPS steps,
+#        at THREADS threads;
+#     5. last line: ratio_contact_steps_vs_yade=<rcdem cube contact-steps/s / YADE's>, both at
+#        THREADS threads.
+#   bash bench/throughput.sh --scaling [STEPS=200] [BUILD_DIR=build]
+#     rcdem_step_bench on cubes of SCALING_SIZES (default 0.07 0.11 0.16 m: about 0.9k, 3.4k and
+#     10.3k particles, 12x) at THREADS threads; one line per size with the time per step per
+#     particle.
+# Environment (all optional): THREADS (2: the YADE comparison and the scaling runs), RCDEM_THREADS
+# ("1 2"), STREAM_N (4e7 elements per array: 3 x 320 MB), YADE_N (the cube's particle count),
+# YADE_STEPS (STEPS), SKIP_BEAM=1, SCALING_SIZES. A quick end-to-end check:
+#   STREAM_N=1e7 RCDEM_THREADS=1 THREADS=1 SKIP_BEAM=1 YADE_N=2000 bash bench/throughput.sh 20
+# Build first: ninja -C build rcdem_stream rcdem_step_bench. YADE: Debian's yade (/usr/bin/yade).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+SCALING=0
+if [[ "${1:-}" == "--scaling" ]]; then
+  SCALING=1
+  shift
+fi
+K=${1:-$([[ $SCALING == 1 ]] && echo 200 || echo 500)}
+BUILD=${2:-build}
+THREADS=${THREADS:-2}
+RCDEM_THREADS=${RCDEM_THREADS:-"1 2"}
+STREAM_N=${STREAM_N:-4e7}
+STEP_BENCH="$BUILD/bench/rcdem_step_bench"
+STREAM="$BUILD/bench/rcdem_stream"
+YADE=${YADE:-yade}
+PY=/usr/bin/python3
+
+for exe in "$STEP_BENCH" "$STREAM"; do
+  [[ -x "$exe" ]] || { echo "missing $exe: build with ninja -C $BUILD rcdem_stream rcdem_step_bench" >&2; exit 1; }
+done
+
+# The value of key=... in a line of key=value pairs.
+kv() { tr ' ' '\n' <<<"$2" | sed -n "s/^$1=//p" | head -n1; }
+# Floating-point arithmetic.
+calc() { awk "BEGIN { printf \"%.4g\", $1 }"; }
+
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+
+echo "date: $(date -u +%F)  nproc: $(nproc)  cpu: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')  steps: $K"
+
+if [[ $SCALING == 1 ]]; then
+  echo "scaling: rcdem_step_bench on cubes, $THREADS thread(s), $K steps each"
+  for s in ${SCALING_SIZES:-0.07 0.11 0.16}; do
+    sed -e "s/^size = .*/size = [$s, $s, $s]/" examples/uniaxial/compression.toml > "$tmp/cube_$s.toml"
+    line=$(OMP_NUM_THREADS=$THREADS "$STEP_BENCH" "$tmp/cube_$s.toml" "$K" | grep -v '^#')
+    bodies=$(kv bodies "$line")
+    secs=$(kv seconds "$line")
+    echo "size_m=$s bodies=$bodies contacts=$(kv contacts "$line") local_points=$(kv local_points "$line")" \
+         "steps_per_s=$(kv steps_per_s "$line") ns_per_particle_step=$(calc "$secs / $K / $bodies * 1e9")" \
+         "achieved_GBps=$(kv achieved_GBps "$line")"
+  done
+  exit 0
+fi
+
+# STREAM at each thread count used (the fraction compares like with like).
+declare -A stream_gbps
+for t in $(echo "$RCDEM_THREADS $THREADS" | tr ' ' '\n' | sort -un); do
+  line=$(OMP_NUM_THREADS=$t "$STREAM" "$STREAM_N")
+  echo "$line"
+  stream_gbps[$t]=$(kv stream_triad_GBps "$line")
+done
+
+scenarios=("cube=examples/uniaxial/compression.toml")
+[[ "${SKIP_BEAM:-0}" == 1 ]] || scenarios+=("AN4_NL-B=examples/three_point_bending/study/AN4_NL-B.toml")
+declare -A rcdem_cs
+cube_bodies=""
+cube_points_per_contact=""
+for entry in "${scenarios[@]}"; do
+  name=${entry%%=*}
+  file=${entry#*=}
+  # The YADE comparison's thread count always runs for the cube.
+  list=$RCDEM_THREADS
+  [[ $name == cube && " $list " != *" $THREADS "* ]] && list="$list $THREADS"
+  for t in $list; do
+    out=$(OMP_NUM_THREADS=$t "$STEP_BENCH" "$file" "$K")
+    echo "$out"
+    line=$(grep -v '^#' <<<"$out")
+    gbps=$(kv achieved_GBps "$line")
+    echo "$name threads=$t achieved_GBps=$gbps stream_triad_GBps=${stream_gbps[$t]} fraction_of_stream=$(calc "$gbps / ${stream_gbps[$t]}")"
+    rcdem_cs[$name.$t]=$(kv contact_steps_per_s "$line")
+    if [[ $name == cube ]]; then
+      cube_bodies=$(kv bodies "$line")
+      cube_points_per_contact=$(calc "$(kv local_points "$line") / $(kv contacts "$line")")
+    fi
+  done
+done
+
+N=${YADE_N:-$cube_bodies}
+echo "yade: $YADE -n -x -j $THREADS bench/yade_cpm.py $N ${YADE_STEPS:-$K}"
+if ! "$YADE" -n -x -j "$THREADS" bench/yade_cpm.py "$N" "${YADE_STEPS:-$K}" > "$tmp/yade.log" 2>&1; then
+  cat "$tmp/yade.log" >&2
+  echo "yade failed" >&2
+  exit 1
+fi
+grep '^# yade_cpm' "$tmp/yade.log" || true
+yline=$(grep '^yade_threads=' "$tmp/yade.log" | tail -n1)
+[[ -n "$yline" ]] || { cat "$tmp/yade.log" >&2; echo "no result line from yade" >&2; exit 1; }
+echo "$yline"
+ycs=$(kv yade_contact_steps_per_s "$yline")
+rcs=${rcdem_cs[cube.$THREADS]}
+echo "# rcdem cube ($THREADS threads): $rcs contact-steps/s, $cube_points_per_contact local points per" \
+     "contact; YADE: $ycs contact-steps/s, one force point per bond"
+echo "ratio_contact_steps_vs_yade=$(calc "$rcs / $ycs")"
