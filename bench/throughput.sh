@@ -41,6 +41,15 @@ STEP_BENCH="$BUILD/bench/rcdem_step_bench"
 STREAM="$BUILD/bench/rcdem_stream"
 YADE=${YADE:-yade}
 PY=/usr/bin/python3
+# YADE is the peer of the comparison: Debian's package, installed here if missing (as root).
+if [[ $SCALING == 0 ]] && ! command -v "$YADE" >/dev/null; then
+  if [[ $(id -u) == 0 ]]; then
+    echo "installing Debian's yade (the peer of the comparison)..." >&2
+    DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends yade >/dev/null
+  else
+    echo "yade not found: install Debian's package (apt-get install yade) or set YADE=" >&2; exit 1
+  fi
+fi
 
 for exe in "$STEP_BENCH" "$STREAM"; do
   [[ -x "$exe" ]] || { echo "missing $exe: build with ninja -C $BUILD rcdem_stream rcdem_step_bench" >&2; exit 1; }
