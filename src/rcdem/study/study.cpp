@@ -107,14 +107,17 @@ void write_tables(const fs::path& out, const std::vector<CaseRecord>& cases,
 
 // `rcdem --quiet run SCENARIO -o DIR --force` as a child process, output to DIR/run.log.
 pid_t spawn_run(const fs::path& scenario, const fs::path& dir, int threads) {
-  const std::string exe = fs::read_symlink("/proc/self/exe").string();
+  // Through /proc/self/exe, not its target: the binary may be rebuilt while a study runs, and
+  // the link still reaches the one that is running.
+  const std::string exe = "/proc/self/exe";
   const std::string log = (dir / "run.log").string();
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
                                    O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-  std::vector<std::string> args = {exe, "run", scenario.string(), "-o", dir.string(), "--force"};
+  std::vector<std::string> args = {"rcdem", "run", scenario.string(), "-o", dir.string(),
+                                   "--force"};
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -263,7 +266,11 @@ int run_study(const StudyOptions& o) {
         if (!quiet)
           fmt::print(stderr, "{}: started ({}; log {})\n", records[i].name,
                      todo[i].first.string(), (dir / "run.log").string());
-        running[spawn_run(todo[i].first, dir, o.threads_per_job)] = i;
+        try {
+          running[spawn_run(todo[i].first, dir, o.threads_per_job)] = i;
+        } catch (const Error& e) {
+          finish(i, e.what());
+        }
       }
       int status = 0;
       const pid_t pid = ::waitpid(-1, &status, 0);
