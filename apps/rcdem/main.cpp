@@ -1,10 +1,13 @@
 // rcdem command line: generate | run | calibrate | study | print-schema.
 #include <fmt/format.h>
+#include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <thread>
@@ -70,18 +73,69 @@ void write_specimen(const rcdem::Scenario& scenario, const fs::path& out,
   }
 }
 
-int run(const fs::path& scenario_path, fs::path out, bool force) {
-  const rcdem::Scenario scenario = rcdem::load_scenario(scenario_path);
-  rcdem::validate_run(scenario);
-  if (out.empty()) out = default_output(scenario_path);
-  const bool created = rcdem::io::prepare_output_directory(out, force);
-  try {
-    rcdem::run_scenario(scenario, out);
-  } catch (...) {
-    rcdem::io::remove_if_created_and_empty(out, created);
-    throw;
+// --checkpoint-every: a step count ("5000") or a wall time ("90s", "10min", "2h"); "0" = only
+// on SIGINT/SIGTERM.
+void parse_checkpoint_every(const std::string& text, rcdem::RunOptions& o) {
+  const auto bad = [&] {
+    rcdem::fail(
+        "--checkpoint-every '{}': expected a step count (e.g. 5000) or a wall time (e.g. 90s, "
+        "10min, 2h); 0 = only on SIGINT/SIGTERM",
+        text);
+  };
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (end == text.c_str() || !std::isfinite(v) || v < 0.0) bad();
+  const std::string unit = end;
+  o.checkpoint_every_steps = 0;
+  o.checkpoint_every_seconds = 0.0;
+  if (unit.empty()) {
+    if (v != std::floor(v) || v > 1e15) bad();
+    o.checkpoint_every_steps = static_cast<std::int64_t>(v);
+  } else if (unit == "s") {
+    o.checkpoint_every_seconds = v;
+  } else if (unit == "min") {
+    o.checkpoint_every_seconds = 60.0 * v;
+  } else if (unit == "h") {
+    o.checkpoint_every_seconds = 3600.0 * v;
+  } else {
+    bad();
   }
-  return 0;
+}
+
+int run(const fs::path& scenario_path, fs::path out, bool force, const fs::path& resume,
+        const std::string& checkpoint_every, const std::vector<std::string>& command) {
+  rcdem::RunOptions options;
+  options.handle_signals = true;
+  options.command = command;
+  parse_checkpoint_every(checkpoint_every, options);
+  rcdem::RunSummary r;
+  if (!resume.empty()) {
+    if (!scenario_path.empty())
+      rcdem::fail("run: give a scenario or --resume DIR, not both (DIR holds its scenario)");
+    if (!out.empty() || force)
+      rcdem::fail("run --resume '{}': the run continues in its own directory; drop -o/--force",
+                  resume.string());
+    const rcdem::Scenario scenario = rcdem::run_directory_scenario(resume);
+    rcdem::validate_run(scenario);
+    if (::access(resume.c_str(), W_OK | X_OK) != 0)
+      rcdem::fail("run directory '{}' is not writable: {}", resume.string(), std::strerror(errno));
+    options.resume = true;
+    r = rcdem::run_scenario(scenario, resume, options);
+  } else {
+    if (scenario_path.empty()) rcdem::fail("run: give a scenario file (or --resume DIR)");
+    const rcdem::Scenario scenario = rcdem::load_scenario(scenario_path);
+    rcdem::validate_run(scenario);
+    if (out.empty()) out = default_output(scenario_path);
+    const bool created = rcdem::io::prepare_output_directory(out, force);
+    try {
+      r = rcdem::run_scenario(scenario, out, options);
+    } catch (...) {
+      rcdem::io::remove_if_created_and_empty(out, created);
+      throw;
+    }
+  }
+  // Interrupted: the shell's convention for a death by that signal (130 for SIGINT).
+  return r.stop_reason == "interrupted" ? 128 + r.signal : 0;
 }
 
 // --set NAME=VALUE for the contact parameters and the seed of a calibration.
@@ -201,10 +255,22 @@ int main(int argc, char** argv) {
   gen->add_option("-o,--output", out, "Output directory (default results/<scenario name>)");
   gen->add_flag("--force", force, "Overwrite the results in a non-empty output directory");
 
-  auto* runc = app.add_subcommand("run", "Generate the specimen and run the loading test");
-  runc->add_option("scenario", scenario, "Scenario file (TOML)")->required();
+  fs::path resume;
+  std::string checkpoint_every = "10min";
+  auto* runc = app.add_subcommand(
+      "run",
+      "Generate the specimen and run the loading test (checkpointed; Ctrl-C saves and stops)");
+  runc->add_option("scenario", scenario, "Scenario file (TOML)");
   runc->add_option("-o,--output", out, "Output directory (default results/<scenario name>)");
   runc->add_flag("--force", force, "Overwrite the results in a non-empty output directory");
+  runc->add_option("--resume", resume,
+                   "Continue the interrupted run in DIR from its latest checkpoint")
+      ->type_name("DIR");
+  runc->add_option("--checkpoint-every", checkpoint_every,
+                   "Checkpoint every N steps or every T of wall time (e.g. 5000, 90s, 10min, 2h; "
+                   "0 = only on SIGINT/SIGTERM)")
+      ->type_name("N|T")
+      ->capture_default_str();
 
   double size = 0.160, rate_factor = 1.0, tolerance = 0.05;
   int iterations = 8;
@@ -262,7 +328,9 @@ int main(int argc, char** argv) {
   rcdem::Progress::set_quiet_default(quiet);
   try {
     if (*gen) return generate(scenario, out, force);
-    if (*runc) return run(scenario, out, force);
+    if (*runc)
+      return run(scenario, out, force, resume, checkpoint_every,
+                 std::vector<std::string>(argv, argv + argc));
     if (*cal)
             return calibrate(scenario, out, force, size, rate_factor, sets, target, tolerance, iterations,
                        peak_only);

@@ -15,6 +15,8 @@ class Simulation;
 
 namespace rcdem::io {
 
+struct CheckpointAccess;  // io/checkpoint.cpp: saves and restores the record
+
 class CrackRecord {
  public:
   explicit CrackRecord(const Simulation& sim);
@@ -33,6 +35,7 @@ class CrackRecord {
   std::size_t size() const { return rows_.size(); }
 
  private:
+  friend struct CheckpointAccess;
   struct Row {
     Vec3 position;
     Real area;

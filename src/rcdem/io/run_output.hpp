@@ -10,12 +10,15 @@
 
 namespace rcdem::io {
 
+struct CheckpointAccess;  // io/checkpoint.cpp: saves and restores the series and rows
+
 class SnapshotWriter {
  public:
   SnapshotWriter(std::filesystem::path dir, bool binary, bool facets);
   void write(const Simulation& sim);  // snapshots/particles_NNNNNN.vtu, facets_NNNNNN.vtu, *.pvd
 
  private:
+  friend struct CheckpointAccess;
   std::filesystem::path dir_;
   bool binary_, facets_;
     void write_bars(const Simulation& sim, const std::string& stamp, VtuEncoding enc);
@@ -34,6 +37,7 @@ class History {
   const std::vector<std::vector<double>>& data() const { return rows_; }
 
  private:
+  friend struct CheckpointAccess;
   std::string control_;
   bool bars_ = false;
   std::vector<std::string> columns_;

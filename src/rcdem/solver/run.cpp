@@ -1,22 +1,38 @@
 #include "rcdem/solver/run.hpp"
 
+#include <fcntl.h>
 #include <fmt/format.h>
+#include <sys/file.h>
+#include <toml++/toml.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <fstream>
 #include <limits>
+#include <sstream>
+
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
 
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
 #include "rcdem/io/atomic_file.hpp"
+#include "rcdem/io/checkpoint.hpp"
 #include "rcdem/io/crack_record.hpp"
 #include "rcdem/io/plot_tool.hpp"
 #include "rcdem/io/run_output.hpp"
 #include "rcdem/io/specimen_output.hpp"
 
 namespace rcdem {
+
+namespace fs = std::filesystem;
 
 namespace {
 
@@ -30,6 +46,216 @@ const PlateSettings* find(const Scenario& s, const std::string& name) {
   for (const auto& p : s.plates)
     if (p.name == name) return &p;
   return nullptr;
+}
+
+// ---- Signals. During the set-up (generation: seconds to minutes) there is nothing to save: the
+// process ends at once, saying so. In the loop the handler only raises a flag, which the loop
+// reads after every step.
+
+volatile std::sig_atomic_t g_signal = 0;
+char g_lock_path[4096] = {0};
+volatile std::sig_atomic_t g_resuming = 0;
+
+extern "C" void on_setup_signal(int sig) {
+  static const char fresh[] =
+      "\nrcdem: interrupted during the set-up, before the first step: nothing to resume; start "
+      "the run again (with --force if its directory is not empty)\n";
+  static const char resuming[] =
+      "\nrcdem: interrupted during the set-up of a resumed run: its checkpoints are untouched; "
+      "resume it again\n";
+  const ssize_t ignored = g_resuming ? ::write(STDERR_FILENO, resuming, sizeof resuming - 1)
+                                     : ::write(STDERR_FILENO, fresh, sizeof fresh - 1);
+  (void)ignored;
+  if (g_lock_path[0] != 0) ::unlink(g_lock_path);
+  ::_exit(128 + sig);
+}
+
+extern "C" void on_stop_signal(int sig) {
+  if (g_signal != 0) {
+    // A second signal: the user insists. Die as the signal says (async-signal-safe calls only).
+    std::signal(sig, SIG_DFL);
+    std::raise(sig);
+    return;
+  }
+  g_signal = sig;
+}
+
+class SignalGuard {
+ public:
+  SignalGuard(bool on, const fs::path& lock, bool resuming) : on_(on) {
+    if (!on_) return;
+    g_signal = 0;
+    g_resuming = resuming ? 1 : 0;
+    const std::string l = lock.string();
+    if (l.size() < sizeof g_lock_path) std::memcpy(g_lock_path, l.c_str(), l.size() + 1);
+    install(on_setup_signal, &old_int_, &old_term_);
+  }
+  // From the first step on: finish the step, checkpoint, stop.
+  void loop() {
+    if (on_) install(on_stop_signal, nullptr, nullptr);
+  }
+  ~SignalGuard() {
+    if (!on_) return;
+    ::sigaction(SIGINT, &old_int_, nullptr);
+    ::sigaction(SIGTERM, &old_term_, nullptr);
+    g_signal = 0;
+    g_lock_path[0] = 0;
+  }
+  SignalGuard(const SignalGuard&) = delete;
+  SignalGuard& operator=(const SignalGuard&) = delete;
+
+ private:
+  static void install(void (*handler)(int), struct sigaction* old_int, struct sigaction* old_term) {
+    struct sigaction sa = {};
+    sa.sa_handler = handler;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = SA_RESTART;  // writes in progress go on; the flag is read after the step
+    ::sigaction(SIGINT, &sa, old_int);
+    ::sigaction(SIGTERM, &sa, old_term);
+  }
+  bool on_;
+  struct sigaction old_int_ = {};
+  struct sigaction old_term_ = {};
+};
+
+// ---- The run directory: one rcdem at a time, its manifest. -----------------------------------
+
+// flock on DIR/run.lock while the run goes on (released by the kernel however the process ends):
+// a second `rcdem run --resume DIR` beside a live one is refused instead of mixing files.
+class RunLock {
+ public:
+  RunLock(const fs::path& dir, bool on) : path_(dir / "run.lock") {
+    if (!on) return;
+    fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd_ < 0)
+      fail("cannot write in the run directory '{}': {}", dir.string(), std::strerror(errno));
+    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+      ::close(fd_);
+      fd_ = -1;
+      fail("another rcdem is running in '{}' (it holds run.lock); wait for it or stop it first",
+           dir.string());
+    }
+  }
+  ~RunLock() {
+    if (fd_ < 0) return;
+    ::unlink(path_.c_str());
+    ::close(fd_);
+  }
+  RunLock(const RunLock&) = delete;
+  RunLock& operator=(const RunLock&) = delete;
+
+ private:
+  fs::path path_;
+  int fd_ = -1;
+};
+
+std::string iso_now() {
+  const std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  ::gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+int thread_count() {
+#if defined(_OPENMP)
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  if (!in) return {};
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The scenario's inputs: its text and the fragments it includes (resolved from `file`, where the
+// scenario lives), each with its FNV-1a hash, and the hash of all together, which a checkpoint
+// must match.
+struct Inputs {
+  nlohmann::ordered_json list = nlohmann::ordered_json::array();
+  std::uint64_t hash = 0;
+};
+
+Inputs scenario_inputs(const std::string& text, const fs::path& file) {
+  Inputs in;
+  in.hash = io::fnv1a64(text);
+  in.list.push_back({{"path", file.string()}, {"fnv1a64", fmt::format("{:016x}", in.hash)}});
+  std::vector<std::string> includes;
+  try {
+    const toml::table t = toml::parse(text);
+    if (const toml::node* inc = t.get("include")) {
+      if (auto one = inc->value_exact<std::string>()) includes.push_back(*one);
+      if (const auto* arr = inc->as_array())
+        for (const auto& e : *arr)
+          if (auto f = e.value_exact<std::string>()) includes.push_back(*f);
+    }
+  } catch (const toml::parse_error&) {
+    // Parsed before, so not reached; the text's hash alone then.
+  }
+  for (const auto& f : includes) {
+    const fs::path p = fs::path(f).is_absolute() ? fs::path(f) : file.parent_path() / f;
+    const std::string body = read_text(p);
+    const std::uint64_t h = io::fnv1a64(body);
+    in.hash = io::fnv1a64(body, in.hash ^ 0x9e3779b97f4a7c15ULL);
+    in.list.push_back(
+        {{"path", p.lexically_normal().string()}, {"fnv1a64", fmt::format("{:016x}", h)}});
+  }
+  return in;
+}
+
+// DIR/manifest.json: the scenario as run, the rcdem that ran it, threads, times, exit state and
+// one entry per session (start, and each --resume). Rewritten atomically at the start, at every
+// checkpoint and at the end.
+class Manifest {
+ public:
+  Manifest(fs::path dir, bool on) : path_(std::move(dir) / "manifest.json"), on_(on) {}
+  nlohmann::ordered_json& json() { return j_; }
+  nlohmann::ordered_json& session() { return j_["sessions"].back(); }
+  void load_existing() {
+    if (!on_) return;
+    const std::string text = read_text(path_);
+    j_ = nlohmann::ordered_json::parse(text, nullptr, false);
+    if (j_.is_discarded() || !j_.is_object()) j_ = nlohmann::ordered_json::object();
+    if (!j_.contains("sessions") || !j_["sessions"].is_array())
+      j_["sessions"] = nlohmann::ordered_json::array();
+    // A session still "running" ended without a word (killed, machine down).
+    for (auto& s : j_["sessions"])
+      if (s.value("exit_state", "") == "running") {
+        s["exit_state"] = "killed";
+        s["note"] = "ended without writing its exit state (SIGKILL, crash or power loss)";
+      }
+  }
+  void write() const {
+    if (on_) io::write_file_atomically(path_, j_.dump(2) + "\n");
+  }
+  void write_quietly() const noexcept {
+    try {
+      write();
+    } catch (...) {
+    }
+  }
+
+ private:
+  fs::path path_;
+  bool on_;
+  nlohmann::ordered_json j_ = nlohmann::ordered_json::object();
+};
+
+void remove_stale_temporaries(const fs::path& dir) {
+  std::error_code ec;
+  for (const fs::path& d : {dir, dir / "snapshots"})
+    for (const auto& e : fs::directory_iterator(d, ec))
+      if (e.path().filename().string().find(".tmp.") != std::string::npos) fs::remove(e.path(), ec);
+}
+
+const char* signal_name(int sig) {
+  return sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "a signal";
 }
 
 }  // namespace
@@ -63,166 +289,446 @@ void validate_run(const Scenario& s) {
         at(s, "stop.displacement"), control->name);
 }
 
-RunSummary run_scenario(const Scenario& sc, const std::filesystem::path& out,
+Scenario run_directory_scenario(const fs::path& dir) {
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) fail("--resume '{}': no such run directory", dir.string());
+  if (fs::exists(dir / "summary.json", ec))
+    fail(
+        "--resume '{}': that run has finished (it has summary.json); nothing to resume (rerun it "
+        "with -o {} --force to start it again)",
+        dir.string(), dir.string());
+  const fs::path text_file = dir / "scenario.toml";
+  if (!fs::exists(text_file, ec))
+    fail("--resume '{}': not a run directory (no scenario.toml)", dir.string());
+  std::ifstream in(text_file, std::ios::binary);
+  if (!in) fail("--resume '{}': cannot read scenario.toml", dir.string());
+  const std::string text = read_text(text_file);
+  // Where the scenario came from: its includes are resolved from there, and it keeps its name.
+  fs::path file = text_file, given = text_file;
+  const auto m = nlohmann::json::parse(read_text(dir / "manifest.json"), nullptr, false);
+  if (!m.is_discarded() && m.is_object()) {
+    if (m.contains("scenario_file") && m["scenario_file"].is_string())
+      file = m["scenario_file"].get<std::string>();
+    if (m.contains("scenario") && m["scenario"].is_string())
+      given = m["scenario"].get<std::string>();
+  }
+  Scenario s = parse_scenario(text, file.string());
+  s.source = given;
+  return s;
+}
+
+RunSummary run_scenario(const Scenario& sc, const fs::path& out,
+                        const std::function<void(const Simulation&)>& on_step) {
+  return run_scenario(sc, out, RunOptions{}, on_step);
+}
+
+RunSummary run_scenario(const Scenario& sc, const fs::path& out, const RunOptions& opt,
                         const std::function<void(const Simulation&)>& on_step) {
   validate_run(sc);
   const auto wall_start = std::chrono::steady_clock::now();
-  Simulation sim(sc, build_specimen(sc));
-  // Written only once the set-up has passed every check, so a refused run leaves nothing.
-  io::write_file_atomically(out / "scenario.toml", sc.text);
-  io::write_particles_vtu(out / "particles_initial.vtu", sim.specimen(), sc.output.binary_vtu);
+  const bool checkpoints = opt.resume || opt.handle_signals || opt.checkpoint_every_steps > 0 ||
+                           opt.checkpoint_every_seconds > 0.0;
+  RunLock lock(out, checkpoints);
+  SignalGuard signals(opt.handle_signals, out / "run.lock", opt.resume);
   const bool quiet = Progress::quiet_default();
-  if (!quiet)
-    fmt::print(stderr,
-               "time step {:.4g} s (stable estimate {:.4g} s, set by {}; safety {}); {} bodies, "
-               "{} contacts, {} local points, {} plate contacts\n",
-               sim.time_step(), sim.stable_time_step(), sim.stable_time_step_limit(),
-               sc.solver.time_step > 0.0 ? sc.solver.time_step / sim.stable_time_step()
-                                         : sc.solver.dt_safety,
-               sim.bodies().size(), sim.specimen().contacts.contact_count(),
-               sim.specimen().contacts.point_count(), sim.plate_contacts().size());
 
-  // How many steps the run will take, where a rule tells: for the history and snapshot spacing
-  // and the progress line.
-  // The test's load and displacement: a control plate's, or a pulled bar's.
-  const Plate* control = sim.find_plate(sc.control_plate);
-  const PulledBar* pulled = sim.find_pulled_bar(sc.control_bar);
-  const auto control_load = [&] {
-    return control ? control->load() : pulled ? pulled->load() : 0.0;
-  };
-  const auto control_displacement = [&] {
-    return control ? control->displacement : pulled ? pulled->displacement : 0.0;
-  };
-  const Real control_speed = control ? std::abs(control->velocity) : pulled ? pulled->speed : 0.0;
-  const Real control_ramp = control ? control->ramp_time : pulled ? pulled->ramp_time : 0.0;
-  Real expected = std::numeric_limits<Real>::infinity();
-  if (sc.stop.steps > 0) expected = std::min(expected, static_cast<Real>(sc.stop.steps));
-  if (sc.stop.time > 0.0) expected = std::min(expected, sc.stop.time / sim.time_step());
-  if (sc.stop.displacement > 0.0 && control_speed > 0.0)
-    expected = std::min(
-        expected, (sc.stop.displacement / control_speed + 0.5 * control_ramp) / sim.time_step());
-  if (!std::isfinite(expected)) expected = 1e5;  // load_drop only: a guess for the spacing
-  const auto history_every = std::max<std::int64_t>(
-      1, static_cast<std::int64_t>(expected / static_cast<Real>(sc.output.history_rows)));
-  const auto snapshot_every =
-      sc.output.snapshots > 0
-          ? std::max<std::int64_t>(
-                1, static_cast<std::int64_t>(expected / static_cast<Real>(sc.output.snapshots)))
-          : std::numeric_limits<std::int64_t>::max();
-
-  io::History history(sim, sc.control_plate.empty() ? sc.control_bar : sc.control_plate);
-  io::SnapshotWriter snapshots(out, sc.output.binary_vtu, sc.output.write_facets);
-  io::CrackRecord cracks(sim);
-  snapshots.write(sim);
-  history.record(sim);
-
-  RunSummary r;
-  Real peak = 0.0;
-  const bool tty = ::isatty(STDERR_FILENO) != 0;
-  auto last_report = std::chrono::steady_clock::now();
-  const auto loop_start = last_report;
-  for (;;) {
-    sim.step();
-    if (on_step) on_step(sim);
-    const Real load = control_load();
-    if (load > peak) {
-      peak = load;
-      r.peak_load = load;
-      r.displacement_at_peak = control_displacement();
-      const Real strain = sim.energy().strain;
-      r.kinetic_over_strain_at_peak = strain > 0.0 ? sim.energy().kinetic / strain : 0.0;
+  // The manifest, started (or, resuming, continued) before anything else can fail.
+  Manifest manifest(out, opt.manifest);
+  fs::path scenario_file;
+  if (opt.resume) {
+    manifest.load_existing();
+    const auto& j = manifest.json();
+    scenario_file = j.contains("scenario_file") && j["scenario_file"].is_string()
+                        ? fs::path(j["scenario_file"].get<std::string>())
+                        : out / "scenario.toml";
+  } else if (!sc.source.empty()) {
+    std::error_code ec;
+    scenario_file = fs::absolute(sc.source, ec);
+  }
+  const Inputs inputs = scenario_inputs(sc.text, scenario_file);
+  if (opt.resume && manifest.json().contains("inputs") && manifest.json()["inputs"].is_array()) {
+    // Which input changed, if one did (the checkpoint would only say that something did).
+    for (const auto& was : manifest.json()["inputs"]) {
+      const std::string path = was.value("path", ""), hash = was.value("fnv1a64", "");
+      bool found = false;
+      for (const auto& now : inputs.list)
+        if (now["path"] == path) {
+          found = true;
+          if (now["fnv1a64"] != hash)
+            fail(
+                "cannot resume '{}': the scenario input '{}' changed since the run started "
+                "(FNV-1a {} then, {} now); restore it, or start a new run",
+                out.string(), path, hash, now["fnv1a64"].get<std::string>());
+        }
+      if (!found)
+        fail("cannot resume '{}': the scenario no longer reads '{}' as it did when the run started",
+             out.string(), path);
     }
-    const std::int64_t n = sim.steps();
-    if (n % history_every == 0) {
+  }
+  {
+    auto& j = manifest.json();
+    const std::string version = RCDEM_VERSION, git = RCDEM_GIT_HASH;
+    if (!opt.resume) {
+      j["manifest_version"] = 1;
+      j["scenario"] = sc.source.string();
+      j["scenario_file"] = scenario_file.string();
+      j["scenario_copy"] = "scenario.toml";
+      j["inputs"] = inputs.list;
+      j["inputs_hash"] = fmt::format("{:016x}", inputs.hash);
+      j["seed"] = sc.generation.seed;
+      j["command"] = opt.command;
+      j["rcdem_version"] = version;
+      j["git_hash"] = git;
+      j["threads"] = thread_count();
+      j["start_time"] = iso_now();
+      j["end_time"] = nullptr;
+      j["exit_state"] = "running";
+      j["steps"] = 0;
+      j["time_s"] = 0.0;
+      j["wall_seconds"] = 0.0;
+      j["last_checkpoint"] = nullptr;
+      j["sessions"] = nlohmann::ordered_json::array();
+    }
+    j["rcdem_version"] = version;
+    j["git_hash"] = git;
+    j["threads"] = thread_count();
+    j["exit_state"] = "running";
+    j["end_time"] = nullptr;
+    j["sessions"].push_back({{"start_time", iso_now()},
+                             {"end_time", nullptr},
+                             {"rcdem_version", version},
+                             {"git_hash", git},
+                             {"threads", thread_count()},
+                             {"command", opt.command},
+                             {"resumed_from", nullptr},
+                             {"exit_state", "running"}});
+  }
+  // A run refused during its set-up leaves no manifest (nor anything else) behind.
+  bool manifest_started = opt.resume;
+  const auto record_failure = [&](const std::string& what) {
+    if (!manifest_started) return;
+    auto& j = manifest.json();
+    j["exit_state"] = "failed";
+    j["error"] = what;
+    j["end_time"] = iso_now();
+    manifest.session()["exit_state"] = "failed";
+    manifest.session()["error"] = what;
+    manifest.session()["end_time"] = j["end_time"];
+    manifest.write_quietly();
+  };
+  if (!opt.resume) {
+    // --force over an earlier run: its checkpoints must not be resumed into this one.
+    io::remove_checkpoints(out);
+  } else {
+    remove_stale_temporaries(out);
+  }
+
+  try {
+    Simulation sim(sc, build_specimen(sc));
+    // Written only once the set-up has passed every check, so a refused run leaves nothing.
+    if (!opt.resume) {
+      io::write_file_atomically(out / "scenario.toml", sc.text);
+      io::write_particles_vtu(out / "particles_initial.vtu", sim.specimen(), sc.output.binary_vtu);
+    }
+    manifest.write();
+    manifest_started = true;
+    if (!quiet)
+      fmt::print(stderr,
+                 "time step {:.4g} s (stable estimate {:.4g} s, set by {}; safety {}); {} bodies, "
+                 "{} contacts, {} local points, {} plate contacts\n",
+                 sim.time_step(), sim.stable_time_step(), sim.stable_time_step_limit(),
+                 sc.solver.time_step > 0.0 ? sc.solver.time_step / sim.stable_time_step()
+                                           : sc.solver.dt_safety,
+                 sim.bodies().size(), sim.specimen().contacts.contact_count(),
+                 sim.specimen().contacts.point_count(), sim.plate_contacts().size());
+
+    // The test's load and displacement: a control plate's, or a pulled bar's.
+    const Plate* control = sim.find_plate(sc.control_plate);
+    const PulledBar* pulled = sim.find_pulled_bar(sc.control_bar);
+    const auto control_load = [&] {
+      return control ? control->load() : pulled ? pulled->load() : 0.0;
+    };
+    const auto control_displacement = [&] {
+      return control ? control->displacement : pulled ? pulled->displacement : 0.0;
+    };
+    const Real control_speed = control ? std::abs(control->velocity) : pulled ? pulled->speed : 0.0;
+    const Real control_ramp = control ? control->ramp_time : pulled ? pulled->ramp_time : 0.0;
+
+    io::History history(sim, sc.control_plate.empty() ? sc.control_bar : sc.control_plate);
+    io::SnapshotWriter snapshots(out, sc.output.binary_vtu, sc.output.write_facets);
+    io::CrackRecord cracks(sim);
+    io::LoopState loop;
+    const io::CheckpointParts parts{&sim, &history, &snapshots, &cracks, &loop};
+    if (opt.resume) {
+      const io::RestoreReport rep = io::restore_latest_checkpoint(out, parts, inputs.hash);
+      for (const auto& line : rep.rejected) fmt::print(stderr, "rcdem: warning: {}\n", line);
+      const std::string writer = fmt::format("rcdem {} ({})", RCDEM_VERSION, RCDEM_GIT_HASH);
+      if (rep.header.writer != writer)
+        fmt::print(stderr,
+                   "rcdem: warning: {} was written by {}, this is {}: the rest of the run may "
+                   "differ from an uninterrupted one\n",
+                   rep.file.filename().string(), rep.header.writer, writer);
+      if (!quiet)
+        fmt::print(stderr, "resuming from {} (step {}, t = {:.6g} s)\n", rep.file.string(),
+                   rep.header.step, rep.header.time);
+      manifest.session()["resumed_from"] = {{"file", rep.file.filename().string()},
+                                            {"step", rep.header.step},
+                                            {"time_s", rep.header.time}};
+      if (!rep.rejected.empty()) manifest.session()["rejected_checkpoints"] = rep.rejected;
+      manifest.write();
+    }
+
+    // How many steps the run will take, where a rule tells: for the history and snapshot
+    // spacing and the progress line.
+    Real expected = std::numeric_limits<Real>::infinity();
+    if (sc.stop.steps > 0) expected = std::min(expected, static_cast<Real>(sc.stop.steps));
+    if (sc.stop.time > 0.0) expected = std::min(expected, sc.stop.time / sim.time_step());
+    if (sc.stop.displacement > 0.0 && control_speed > 0.0)
+      expected = std::min(
+          expected, (sc.stop.displacement / control_speed + 0.5 * control_ramp) / sim.time_step());
+    if (!std::isfinite(expected)) expected = 1e5;  // load_drop only: a guess for the spacing
+    const auto history_every = std::max<std::int64_t>(
+        1, static_cast<std::int64_t>(expected / static_cast<Real>(sc.output.history_rows)));
+    const auto snapshot_every =
+        sc.output.snapshots > 0
+            ? std::max<std::int64_t>(
+                  1, static_cast<std::int64_t>(expected / static_cast<Real>(sc.output.snapshots)))
+            : std::numeric_limits<std::int64_t>::max();
+    if (opt.resume) {
+      if (loop.history_every != history_every || loop.snapshot_every != snapshot_every)
+        fail(
+            "checkpoint of '{}': history every {} and snapshots every {} steps, this run would "
+            "use {} and {}: it cannot continue the same run",
+            out.string(), loop.history_every, loop.snapshot_every, history_every, snapshot_every);
+    } else {
+      loop.history_every = history_every;
+      loop.snapshot_every = snapshot_every;
+      snapshots.write(sim);
       history.record(sim);
-      cracks.update(sim, control_displacement(), load);
     }
-    if (n % snapshot_every == 0) {
+    const double wall_before = loop.wall_seconds, loop_before = loop.loop_seconds;
+    const std::int64_t first_step = sim.steps();
+
+    RunSummary r;
+    r.peak_load = loop.peak_load;
+    r.displacement_at_peak = loop.displacement_at_peak;
+    r.kinetic_over_strain_at_peak = loop.kinetic_over_strain_at_peak;
+    Real peak = loop.peak;
+    const bool tty = ::isatty(STDERR_FILENO) != 0;
+    auto last_report = std::chrono::steady_clock::now();
+    const auto loop_start = last_report;
+    auto last_checkpoint = last_report;
+    std::int64_t checkpointed_step = opt.resume ? sim.steps() : -1;
+
+    // A checkpoint of the state after the whole of step n (outputs included), and the manifest.
+    const auto checkpoint = [&](std::chrono::steady_clock::time_point now) {
+      loop.peak = peak;
+      loop.peak_load = r.peak_load;
+      loop.displacement_at_peak = r.displacement_at_peak;
+      loop.kinetic_over_strain_at_peak = r.kinetic_over_strain_at_peak;
+      loop.wall_seconds = wall_before + std::chrono::duration<double>(now - wall_start).count();
+      loop.loop_seconds = loop_before + std::chrono::duration<double>(now - loop_start).count();
+      r.checkpoint = io::write_checkpoint(out, parts, inputs.hash);
+      checkpointed_step = sim.steps();
+      last_checkpoint = std::chrono::steady_clock::now();
+      auto& j = manifest.json();
+      j["steps"] = sim.steps();
+      j["time_s"] = sim.time();
+      j["wall_seconds"] = loop.wall_seconds;
+      j["last_checkpoint"] = {{"file", r.checkpoint.filename().string()},
+                              {"step", sim.steps()},
+                              {"time_s", sim.time()},
+                              {"written", iso_now()}};
+      manifest.session()["steps_at_last_checkpoint"] = sim.steps();
+      manifest.write();
+    };
+    // Output failures (disk full, directory gone) say where the run can continue from.
+    const auto with_resume_hint = [&](const Error& e) {
+      if (!checkpoints || checkpointed_step < 0) return Error(e.what());
+      return Error(fmt::format(
+          "{} (at step {}; the checkpoint of step {} is intact: when the problem is fixed, "
+          "continue with: rcdem run --resume {})",
+          e.what(), sim.steps(), checkpointed_step, out.string()));
+    };
+
+    signals.loop();
+    for (;;) {
+      sim.step();
+      if (on_step) on_step(sim);
+      const Real load = control_load();
+      if (load > peak) {
+        peak = load;
+        r.peak_load = load;
+        r.displacement_at_peak = control_displacement();
+        const Real strain = sim.energy().strain;
+        r.kinetic_over_strain_at_peak = strain > 0.0 ? sim.energy().kinetic / strain : 0.0;
+      }
+      const std::int64_t n = sim.steps();
+      if (n % history_every == 0) {
+        history.record(sim);
+        cracks.update(sim, control_displacement(), load);
+      }
+      if (n % snapshot_every == 0) {
+        try {
+          snapshots.write(sim);
+          history.write(out / "history.csv");
+        } catch (const Error& e) {
+          throw with_resume_hint(e);
+        }
+      }
+      // Stop rules.
+      if (sc.stop.steps > 0 && n >= sc.stop.steps) r.stop_reason = "steps";
+      if (sc.stop.time > 0.0 && sim.time() >= sc.stop.time) r.stop_reason = "time";
+      if (sc.stop.displacement > 0.0 && std::abs(control_displacement()) >= sc.stop.displacement)
+        r.stop_reason = "displacement";
+      // After the peak: the load has fallen below the fraction, and the peak is a real one (the
+      // specimen has cracked: some local point is fully broken).
+      if (sc.stop.load_drop > 0.0 && peak > 0.0 && load < sc.stop.load_drop * peak &&
+          sim.energy().damage > 0.0)
+        r.stop_reason = "load_drop";
+      const auto now = std::chrono::steady_clock::now();
+      if (!quiet && std::chrono::duration<double>(now - last_report).count() > (tty ? 0.5 : 10.0)) {
+        last_report = now;
+        const double elapsed = std::chrono::duration<double>(now - loop_start).count();
+        const double rate = static_cast<double>(n - first_step) / elapsed;
+        const double frac = std::min(1.0, static_cast<double>(n) / expected);
+        fmt::print(stderr,
+                   "{}step {} ({:.1f}%)  {:.0f} steps/s  ETA {:.0f} s  load {:.4g} N  peak "
+                   "{:.4g} N{}",
+                   tty ? "\r" : "", n, 100.0 * frac, rate,
+                   rate > 0 ? std::max(0.0, expected - static_cast<double>(n)) / rate : 0.0, load,
+                   peak, tty ? "   " : "\n");
+        std::fflush(stderr);
+      }
+      if (!r.stop_reason.empty()) break;
+      const bool due = (opt.checkpoint_every_steps > 0 && n % opt.checkpoint_every_steps == 0) ||
+                       (opt.checkpoint_every_seconds > 0.0 &&
+                        std::chrono::duration<double>(now - last_checkpoint).count() >=
+                            opt.checkpoint_every_seconds);
+      if (due) {
+        try {
+          checkpoint(now);
+        } catch (const Error& e) {
+          throw with_resume_hint(e);
+        }
+      }
+      if (g_signal != 0) {
+        // Interrupted: the state after this whole step is saved, with what the run has so far.
+        const int sig = g_signal;
+        try {
+          if (checkpointed_step != n) checkpoint(now);
+          history.write(out / "history.csv");
+          cracks.write(out / "broken_points.csv");
+        } catch (const Error& e) {
+          throw with_resume_hint(e);
+        }
+        auto& j = manifest.json();
+        j["exit_state"] = "interrupted";
+        j["end_time"] = iso_now();
+        manifest.session()["exit_state"] = "interrupted";
+        manifest.session()["signal"] = signal_name(sig);
+        manifest.session()["end_time"] = j["end_time"];
+        manifest.session()["wall_seconds"] =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+        manifest.write_quietly();
+        if (!quiet && tty) fmt::print(stderr, "\n");
+        fmt::print(stderr,
+                   "rcdem: interrupted by {} at step {} (t = {:.6g} s); checkpoint {} written; "
+                   "resume with: rcdem run --resume {}\n",
+                   signal_name(sig), n, sim.time(), r.checkpoint.filename().string(), out.string());
+        r.stop_reason = "interrupted";
+        r.signal = sig;
+        r.steps = n;
+        r.time = sim.time();
+        r.energy = sim.energy();
+        return r;
+      }
+    }
+    if (!quiet && tty) fmt::print(stderr, "\n");
+    if (history.rows() == 0 || history.data().back()[0] != static_cast<double>(sim.steps()))
+      history.record(sim);
+    cracks.update(sim, control_displacement(), control_load());
+    try {
       snapshots.write(sim);
       history.write(out / "history.csv");
+      cracks.write(out / "broken_points.csv");
+    } catch (const Error& e) {
+      throw with_resume_hint(e);
     }
-    // Stop rules.
-    if (sc.stop.steps > 0 && n >= sc.stop.steps) r.stop_reason = "steps";
-    if (sc.stop.time > 0.0 && sim.time() >= sc.stop.time) r.stop_reason = "time";
-    if (sc.stop.displacement > 0.0 && std::abs(control_displacement()) >= sc.stop.displacement)
-      r.stop_reason = "displacement";
-    // After the peak: the load has fallen below the fraction, and the peak is a real one (the
-    // specimen has cracked: some local point is fully broken).
-    if (sc.stop.load_drop > 0.0 && peak > 0.0 && load < sc.stop.load_drop * peak &&
-        sim.energy().damage > 0.0)
-      r.stop_reason = "load_drop";
-    const auto now = std::chrono::steady_clock::now();
-    if (!quiet && std::chrono::duration<double>(now - last_report).count() > (tty ? 0.5 : 10.0)) {
-      last_report = now;
-      const double elapsed = std::chrono::duration<double>(now - loop_start).count();
-      const double rate = static_cast<double>(n) / elapsed;
-      const double frac = std::min(1.0, static_cast<double>(n) / expected);
-      fmt::print(stderr,
-                 "{}step {} ({:.1f}%)  {:.0f} steps/s  ETA {:.0f} s  load {:.4g} N  peak "
-                 "{:.4g} N{}",
-                 tty ? "\r" : "", n, 100.0 * frac, rate,
-                 rate > 0 ? (expected - static_cast<double>(n)) / rate : 0.0, load, peak,
-                 tty ? "   " : "\n");
-      std::fflush(stderr);
-    }
-    if (!r.stop_reason.empty()) break;
-  }
-  if (!quiet && tty) fmt::print(stderr, "\n");
-  if (history.rows() == 0 || history.data().back()[0] != static_cast<double>(sim.steps()))
-    history.record(sim);
-  cracks.update(sim, control_displacement(), control_load());
-  snapshots.write(sim);
-  history.write(out / "history.csv");
-  cracks.write(out / "broken_points.csv");
 
-  r.steps = sim.steps();
-  r.time = sim.time();
-  r.energy = sim.energy();
-  const double wall =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  auto& j = r.json;
-  j["scenario"] = sc.source.string();
-  j["stop_reason"] = r.stop_reason;
-  j["steps"] = r.steps;
-  j["time_s"] = r.time;
-  j["time_step_s"] = sim.time_step();
-  j["stable_time_step_s"] = sim.stable_time_step();
-  j["stable_time_step_set_by"] = sim.stable_time_step_limit();
-  j["control"] = sc.control_plate.empty() ? sc.control_bar : sc.control_plate;
-  j["peak_load_N"] = r.peak_load;
-  j["displacement_at_peak_m"] = r.displacement_at_peak;
-  j["kinetic_over_strain_at_peak"] = r.kinetic_over_strain_at_peak;
-  const Energy& e = r.energy;
-  j["energy"] = {{"external_work_J", e.external_work},
-                 {"strain_J", e.strain},
-                 {"kinetic_J", e.kinetic},
-                 {"dissipated_damage_J", e.damage},
-                 {"dissipated_friction_J", e.friction},
-                 {"dissipated_damping_J", e.damping},
-                 {"dissipated_plastic_J", e.plastic},
-                 {"balance_error", e.balance_error()}};
-  j["damaged_points"] = sim.damaged_points();
-  j["broken_points"] = sim.broken_points();
-  j["first_cracking"] = cracks.first_cracking();
-  j["local_points"] = sim.specimen().contacts.point_count();
-  j["specimen"] = io::specimen_summary(sc, sim.specimen());
-  const double loop =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
-  j["loop_seconds"] = loop;
-  j["steps_per_second"] = loop > 0.0 ? static_cast<double>(r.steps) / loop : 0.0;
-  j["seconds"] = wall;
-  io::write_file_atomically(out / "summary.json", j.dump(2) + "\n");
-  io::run_plot_tool("plot_history.py", out);  // load_displacement.png
-  r.history_columns = history.columns();
-  r.history_rows = history.data();
-  if (!quiet)
-    fmt::print(stderr,
-               "stopped by {} after {} steps (t = {:.4g} s); peak load {:.6g} N at {:.4g} m; "
-               "energy balance: external work {:.6g} J = strain {:.6g} + kinetic {:.4g} + "
-               "dissipated {:.6g} J (error {:.3f}%)\n",
-               r.stop_reason, r.steps, r.time, r.peak_load, r.displacement_at_peak, e.external_work,
-               e.strain, e.kinetic, e.dissipated(), 100.0 * e.balance_error());
-  return r;
+    r.steps = sim.steps();
+    r.time = sim.time();
+    r.energy = sim.energy();
+    const auto end = std::chrono::steady_clock::now();
+    const double wall = wall_before + std::chrono::duration<double>(end - wall_start).count();
+    auto& j = r.json;
+    j["scenario"] = sc.source.string();
+    j["stop_reason"] = r.stop_reason;
+    j["steps"] = r.steps;
+    j["time_s"] = r.time;
+    j["time_step_s"] = sim.time_step();
+    j["stable_time_step_s"] = sim.stable_time_step();
+    j["stable_time_step_set_by"] = sim.stable_time_step_limit();
+    j["control"] = sc.control_plate.empty() ? sc.control_bar : sc.control_plate;
+    j["peak_load_N"] = r.peak_load;
+    j["displacement_at_peak_m"] = r.displacement_at_peak;
+    j["kinetic_over_strain_at_peak"] = r.kinetic_over_strain_at_peak;
+    const Energy& e = r.energy;
+    j["energy"] = {{"external_work_J", e.external_work},
+                   {"strain_J", e.strain},
+                   {"kinetic_J", e.kinetic},
+                   {"dissipated_damage_J", e.damage},
+                   {"dissipated_friction_J", e.friction},
+                   {"dissipated_damping_J", e.damping},
+                   {"dissipated_plastic_J", e.plastic},
+                   {"balance_error", e.balance_error()}};
+    j["damaged_points"] = sim.damaged_points();
+    j["broken_points"] = sim.broken_points();
+    j["first_cracking"] = cracks.first_cracking();
+    j["local_points"] = sim.specimen().contacts.point_count();
+    j["specimen"] = io::specimen_summary(sc, sim.specimen());
+    // Wall-clock figures cover every session up to the state each handed on (a resumed run:
+    // up to its checkpoint), so they may differ between otherwise identical runs.
+    const double loop_s = loop_before + std::chrono::duration<double>(end - loop_start).count();
+    j["loop_seconds"] = loop_s;
+    j["steps_per_second"] = loop_s > 0.0 ? static_cast<double>(r.steps) / loop_s : 0.0;
+    j["seconds"] = wall;
+    io::write_file_atomically(out / "summary.json", j.dump(2) + "\n");
+    io::run_plot_tool("plot_history.py", out);  // load_displacement.png
+    r.history_columns = history.columns();
+    r.history_rows = history.data();
+    {
+      auto& m = manifest.json();
+      m["exit_state"] = "finished";
+      m["stop_reason"] = r.stop_reason;
+      m["end_time"] = iso_now();
+      m["steps"] = r.steps;
+      m["time_s"] = r.time;
+      m["wall_seconds"] = wall;
+      manifest.session()["exit_state"] = "finished";
+      manifest.session()["end_time"] = m["end_time"];
+      manifest.session()["wall_seconds"] = std::chrono::duration<double>(end - wall_start).count();
+      if (checkpoints && !opt.keep_checkpoints) {
+        io::remove_checkpoints(out);
+        m["last_checkpoint"] = nullptr;
+      }
+      manifest.write_quietly();
+    }
+    if (!quiet)
+      fmt::print(stderr,
+                 "stopped by {} after {} steps (t = {:.4g} s); peak load {:.6g} N at {:.4g} m; "
+                 "energy balance: external work {:.6g} J = strain {:.6g} + kinetic {:.4g} + "
+                 "dissipated {:.6g} J (error {:.3f}%)\n",
+                 r.stop_reason, r.steps, r.time, r.peak_load, r.displacement_at_peak,
+                 e.external_work, e.strain, e.kinetic, e.dissipated(), 100.0 * e.balance_error());
+    return r;
+  } catch (const Error& e) {
+    record_failure(e.what());
+    throw;
+  } catch (const std::exception& e) {
+    record_failure(std::string("internal error: ") + e.what());
+    throw;
+  }
 }
 
 }  // namespace rcdem

@@ -1,5 +1,6 @@
 #pragma once
-// A whole run (SPEC 6, 11): specimen, solver, stop rules, history, snapshots, summary.
+// A whole run (SPEC 6, 11): specimen, solver, stop rules, history, snapshots, summary; and, for
+// production runs (issue 6), checkpoints, resuming, signals and the run manifest.
 #include <filesystem>
 #include <functional>
 #include <nlohmann/json.hpp>
@@ -10,7 +11,8 @@
 namespace rcdem {
 
 struct RunSummary {
-  std::string stop_reason;
+  std::string stop_reason;  // a stop rule, or "interrupted" (a signal; see `signal`)
+  int signal = 0;           // SIGINT or SIGTERM when interrupted
   Real peak_load = 0.0;
   Real displacement_at_peak = 0.0;
   Real kinetic_over_strain_at_peak = 0.0;
@@ -20,6 +22,27 @@ struct RunSummary {
   nlohmann::ordered_json json;
   std::vector<std::string> history_columns;
   std::vector<std::vector<double>> history_rows;
+  std::filesystem::path checkpoint;  // the last checkpoint written, if any
+};
+
+// How a run is kept safe (docs/checkpoint.md). The defaults are those of library callers
+// (calibration, the study's in-process runs): a manifest, no checkpoint, signals untouched.
+// `rcdem run` checkpoints every 10 minutes of wall time and on SIGINT/SIGTERM.
+struct RunOptions {
+  // Continue the run in `out` from its newest usable checkpoint (the scenario must be the one it
+  // started with: run_directory_scenario()). Appends to its history and manifest.
+  bool resume = false;
+  // Periodic checkpoints: every this many steps, and/or this many seconds of wall time (0: no).
+  std::int64_t checkpoint_every_steps = 0;
+  double checkpoint_every_seconds = 0.0;
+  // SIGINT/SIGTERM during the loop: finish the step, write a checkpoint, history.csv and
+  // broken_points.csv, and return with stop_reason "interrupted". A second signal kills at once.
+  bool handle_signals = false;
+  // Once the run has finished and written its results, its checkpoints are removed.
+  bool keep_checkpoints = false;
+  // manifest.json in `out` (docs/checkpoint.md).
+  bool manifest = true;
+  std::vector<std::string> command;  // the command line, for the manifest
 };
 
 // Checks that the scenario describes a run that can end: plates, a control plate where a rule
@@ -30,5 +53,13 @@ void validate_run(const Scenario& scenario);
 // `on_step` (optional) is called after every step, for callers that follow the run.
 RunSummary run_scenario(const Scenario& scenario, const std::filesystem::path& out,
                         const std::function<void(const Simulation&)>& on_step = {});
+RunSummary run_scenario(const Scenario& scenario, const std::filesystem::path& out,
+                        const RunOptions& options,
+                        const std::function<void(const Simulation&)>& on_step = {});
+
+// The scenario of the run in `dir`, for --resume: DIR/scenario.toml (the scenario as run), its
+// includes resolved from where the original file was (manifest.json), named as it was. Refuses a
+// directory that is not a run, or whose run has finished.
+Scenario run_directory_scenario(const std::filesystem::path& dir);
 
 }  // namespace rcdem

@@ -17,6 +17,10 @@
 
 namespace rcdem {
 
+namespace io {
+struct CheckpointAccess;  // io/checkpoint.cpp: saves and restores the state below
+}
+
 // A bar pulled out by its first cylinder (pull-out tests): the cylinder's velocity is prescribed
 // along `direction`, its rotation held; the force it takes is the pull-out load.
 struct PulledBar {
@@ -84,6 +88,7 @@ class Simulation {
   void set_damping(Real alpha) { damping_ = alpha; }
 
  private:
+  friend struct io::CheckpointAccess;
   void compute_stable_time_step();
   void gather_forces();
   void integrate();

@@ -1,0 +1,402 @@
+// Checkpoints (issue 6, docs/checkpoint.md): a restored simulation continues bitwise as the
+// original; damaged files (truncated, a flipped byte, another format) are rejected with a message
+// naming the file and the reason, and the previous checkpoint is used; the state does not depend
+// on the thread count.
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <random>
+#include <sstream>
+#include <string>
+
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
+
+#include "rcdem/core/error.hpp"
+#include "rcdem/io/checkpoint.hpp"
+#include "rcdem/io/crack_record.hpp"
+#include "rcdem/io/run_output.hpp"
+#include "rcdem/io/scenario.hpp"
+#include "rcdem/solver/simulation.hpp"
+#include "rcdem/specimens/specimen.hpp"
+
+using namespace rcdem;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string read_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void write_file(const fs::path& p, const std::string& data) {
+  std::ofstream out(p, std::ios::binary | std::ios::trunc);
+  out << data;
+}
+
+// tests/regression/small_run.toml: bodies, a bar (cylinders, nodes, NL-A interface), two plates.
+Scenario small_run() {
+  return load_scenario(fs::path(RCDEM_SOURCE_DIR) / "tests/regression/small_run.toml");
+}
+
+// A bar pulled out of a small cube: the pulled-bar state.
+Scenario pull_out() {
+  return parse_scenario(R"(
+[specimen]
+shape = "box"
+size = [0.04, 0.04, 0.04]
+[generation]
+seed = 2
+relaxation_iterations = 100
+[bars.bar]
+start = [0.0, 0.02, 0.02]
+end = [0.035, 0.02, 0.02]
+diameter = 0.008
+cylinder_length = 0.00875
+f_y = 1.0e9
+interface = "NL-B"
+pull_velocity = 1.0
+pull_ramp_time = 2.0e-5
+[plates.support]
+face = "x-"
+[loading]
+control_bar = "bar"
+[stop]
+displacement = 0.0005
+)",
+                        "pull_out.toml");
+}
+
+std::string encode(Simulation& sim, std::uint64_t hash = 7) {
+  return io::encode_checkpoint(io::CheckpointParts{&sim}, hash);
+}
+
+class TempDir {
+ public:
+  TempDir() {
+    static int count = 0;
+    path_ = fs::temp_directory_path() /
+            fmt::format("rcdem_ckpt_{}_{}_{}", ::getpid(),
+                        ::testing::UnitTest::GetInstance()->current_test_info()->name(), count++);
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::permissions(path_, fs::perms::owner_all, fs::perm_options::add, ec);
+    fs::remove_all(path_, ec);
+  }
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+std::string message_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// "" when equal, else where two checkpoints first differ (never the bytes themselves).
+std::string difference(const std::string& a, const std::string& b) {
+  if (a == b) return "";
+  std::size_t i = 0;
+  while (i < a.size() && i < b.size() && a[i] == b[i]) ++i;
+  return fmt::format("checkpoints of {} and {} bytes differ from byte {}", a.size(), b.size(), i);
+}
+
+// One bytewise CRC-32 step per byte: the reference the sliced version must equal.
+std::uint32_t crc32_bytewise(const std::string& s) {
+  std::uint32_t c = 0xFFFFFFFFU;
+  for (unsigned char b : s) {
+    c ^= b;
+    for (int k = 0; k < 8; ++k) c = (c & 1U) ? 0xEDB88320U ^ (c >> 1) : c >> 1;
+  }
+  return ~c;
+}
+
+}  // namespace
+
+TEST(Checkpoint, Crc32IsZlibs) {
+  EXPECT_EQ(io::crc32("123456789", 9), 0xCBF43926U);  // the standard check value
+  std::mt19937 rng(5);
+  for (int len : {0, 1, 7, 8, 9, 63, 64, 1000, 4099}) {
+    std::string s(static_cast<std::size_t>(len), '\0');
+    for (char& c : s) c = static_cast<char>(rng() & 0xFFU);
+    EXPECT_EQ(io::crc32(s.data(), s.size()), crc32_bytewise(s)) << len;
+    // In two parts, continued.
+    const std::size_t half = s.size() / 3;
+    EXPECT_EQ(io::crc32(s.data() + half, s.size() - half, io::crc32(s.data(), half)),
+              crc32_bytewise(s));
+  }
+  EXPECT_EQ(io::fnv1a64(""), 0xcbf29ce484222325ULL);
+  EXPECT_EQ(io::fnv1a64("a"), 0xaf63dc4c8601ec8cULL);
+}
+
+// Saved after 300 steps and restored into a fresh simulation of the same scenario, the state
+// equals the original bitwise, and stays equal over 300 more steps: nothing that a step uses is
+// missing from the checkpoint.
+TEST(Checkpoint, RestoredRunContinuesBitwise) {
+  for (const Scenario& sc : {small_run(), pull_out()}) {
+    SCOPED_TRACE(sc.source.string());
+    const Specimen specimen = build_specimen(sc);
+    Simulation a(sc, specimen);
+    for (int i = 0; i < 300; ++i) a.step();
+    TempDir dir;
+    const fs::path file = io::write_checkpoint(dir.path(), io::CheckpointParts{&a}, 7);
+    EXPECT_EQ(file.filename(), "checkpoint_000000000300.rcp");
+    const std::string saved = read_file(file);
+    EXPECT_EQ(difference(saved, encode(a)), "");
+
+    Simulation b(sc, specimen);
+    const io::CheckpointHeader h = io::restore_checkpoint(file, io::CheckpointParts{&b}, 7);
+    EXPECT_EQ(h.step, 300);
+    EXPECT_EQ(h.time, a.time());
+    EXPECT_EQ(b.steps(), 300);
+    EXPECT_EQ(difference(encode(b), saved), "");
+    for (int i = 0; i < 300; ++i) {
+      a.step();
+      b.step();
+    }
+    EXPECT_EQ(difference(encode(a), encode(b)), "");
+    EXPECT_EQ(a.time(), b.time());
+    EXPECT_EQ(a.energy().external_work, b.energy().external_work);
+    for (Index i = 0; i < a.bodies().size(); ++i)
+      ASSERT_EQ(a.bodies().position[i], b.bodies().position[i]) << "body " << i;
+    if (!a.pulled_bars().empty()) {
+      EXPECT_EQ(a.pulled_bars()[0].displacement, b.pulled_bars()[0].displacement);
+      EXPECT_GT(a.pulled_bars()[0].displacement, 0.0);
+    }
+    // Something happened worth keeping: damage, node forces, plate reactions.
+    EXPECT_GT(a.energy().damage + a.energy().friction, 0.0);
+  }
+}
+
+// The run loop's parts (history rows, crack record, snapshot series, loop scalars) round-trip too.
+TEST(Checkpoint, RunPartsRoundTrip) {
+  const Scenario sc = small_run();
+  const Specimen specimen = build_specimen(sc);
+  TempDir dir;
+  Simulation a(sc, specimen);
+  io::History ha(a, "top");
+  io::SnapshotWriter wa(dir.path() / "a", false, true);
+  io::CrackRecord ca(a);
+  io::LoopState la;
+  la.peak = 1.5;
+  la.history_every = 30;
+  la.snapshot_every = 1000;
+  wa.write(a);
+  for (int i = 1; i <= 1500; ++i) {
+    a.step();
+    if (i % 30 == 0) {
+      ha.record(a);
+      ca.update(a, 0.1 * i, 2.0 * i);
+    }
+  }
+  wa.write(a);
+  ASSERT_GT(ca.size(), 0U);
+  const io::CheckpointParts pa{&a, &ha, &wa, &ca, &la};
+  const fs::path file = io::write_checkpoint(dir.path(), pa, 11);
+
+  Simulation b(sc, specimen);
+  io::History hb(b, "top");
+  io::SnapshotWriter wb(dir.path() / "b", false, true);
+  io::CrackRecord cb(b);
+  io::LoopState lb;
+  const io::CheckpointParts pb{&b, &hb, &wb, &cb, &lb};
+  io::restore_checkpoint(file, pb, 11);
+  EXPECT_EQ(difference(io::encode_checkpoint(pb, 11), read_file(file)), "");
+  EXPECT_EQ(hb.data(), ha.data());
+  EXPECT_EQ(cb.size(), ca.size());
+  EXPECT_EQ(cb.first_cracking(), ca.first_cracking());
+  EXPECT_EQ(lb.peak, 1.5);
+  EXPECT_EQ(lb.history_every, 30);
+  // The snapshot series: the next .pvd lists the earlier files.
+  a.step();
+  b.step();
+  wa.write(a);
+  wb.write(b);
+  EXPECT_EQ(read_file(dir.path() / "a" / "particles.pvd"),
+            read_file(dir.path() / "b" / "particles.pvd"));
+  EXPECT_NE(read_file(dir.path() / "b" / "particles.pvd").find("particles_000000000"),
+            std::string::npos);
+}
+
+// Damaged or foreign files: rejected before anything is changed, with the file and the reason.
+TEST(Checkpoint, DamagedFilesAreRejectedWithTheReason) {
+  const Scenario sc = small_run();
+  const Specimen specimen = build_specimen(sc);
+  Simulation a(sc, specimen);
+  for (int i = 0; i < 50; ++i) a.step();
+  TempDir dir;
+  const fs::path good = io::write_checkpoint(dir.path(), io::CheckpointParts{&a}, 7);
+  const std::string bytes = read_file(good);
+  Simulation b(sc, specimen);
+  const std::string fresh = encode(b);
+  const auto restore_msg = [&](const std::string& data) {
+    const fs::path f = dir.path() / "bad.rcp";
+    write_file(f, data);
+    const std::string m =
+        message_of([&] { io::restore_checkpoint(f, io::CheckpointParts{&b}, 7); });
+    EXPECT_NE(m.find("checkpoint '" + f.string() + "' rejected"), std::string::npos) << m;
+    EXPECT_EQ(difference(encode(b), fresh), "") << "a rejected checkpoint changed the state";
+    return m;
+  };
+  EXPECT_NE(restore_msg(bytes.substr(0, bytes.size() / 2)).find("truncated: "), std::string::npos);
+  EXPECT_NE(restore_msg(bytes.substr(0, 10)).find("truncated"), std::string::npos);
+  EXPECT_NE(restore_msg("").find("truncated"), std::string::npos);
+  std::string flipped = bytes;
+  flipped[flipped.size() / 2] = static_cast<char>(flipped[flipped.size() / 2] ^ 0x10);
+  EXPECT_NE(restore_msg(flipped).find("checksum mismatch"), std::string::npos);
+  std::string magic = bytes;
+  magic[0] = 'X';
+  EXPECT_NE(restore_msg(magic).find("not an rcdem checkpoint"), std::string::npos);
+  std::string newer = bytes;
+  newer[8] = 2;
+  EXPECT_NE(restore_msg(newer).find("format version 2 is newer"), std::string::npos);
+  EXPECT_NE(restore_msg(bytes + "x").find("data after the end"), std::string::npos);
+  // Another scenario's inputs, another specimen.
+  write_file(dir.path() / "ok.rcp", bytes);
+  const std::string other = message_of(
+      [&] { io::restore_checkpoint(dir.path() / "ok.rcp", io::CheckpointParts{&b}, 8); });
+  EXPECT_NE(other.find("other scenario inputs"), std::string::npos) << other;
+  Scenario sc2 = sc;
+  sc2.generation.seed = 4;
+  Simulation c(sc2, build_specimen(sc2));
+  const std::string spec = message_of(
+      [&] { io::restore_checkpoint(dir.path() / "ok.rcp", io::CheckpointParts{&c}, 7); });
+  EXPECT_NE(spec.find("another specimen"), std::string::npos) << spec;
+  // The intact file still restores.
+  io::restore_checkpoint(dir.path() / "ok.rcp", io::CheckpointParts{&b}, 7);
+  EXPECT_EQ(b.steps(), 50);
+}
+
+// The newest checkpoint damaged: the previous one is used, and the damaged one set aside; the
+// last two are kept; none usable: one error naming each file and its reason.
+TEST(Checkpoint, FallsBackToThePreviousCheckpoint) {
+  const Scenario sc = small_run();
+  const Specimen specimen = build_specimen(sc);
+  Simulation a(sc, specimen);
+  TempDir dir;
+  std::string at200;
+  for (int k = 1; k <= 3; ++k) {
+    for (int i = 0; i < 100; ++i) a.step();
+    io::write_checkpoint(dir.path(), io::CheckpointParts{&a}, 7);
+    if (k == 2) at200 = encode(a);
+  }
+  const auto files = io::list_checkpoints(dir.path());
+  ASSERT_EQ(files.size(), 2U) << "the last two are kept";
+  EXPECT_EQ(files[0].step, 300);
+  EXPECT_EQ(files[1].step, 200);
+  // Truncate the newest, as a crash during a copy would.
+  const std::string newest = read_file(files[0].path);
+  write_file(files[0].path, newest.substr(0, newest.size() - 1000));
+  Simulation b(sc, specimen);
+  const io::RestoreReport rep =
+      io::restore_latest_checkpoint(dir.path(), io::CheckpointParts{&b}, 7);
+  EXPECT_EQ(rep.file, files[1].path);
+  EXPECT_EQ(rep.header.step, 200);
+  EXPECT_EQ(difference(encode(b), at200), "");
+  ASSERT_EQ(rep.rejected.size(), 1U);
+  EXPECT_NE(rep.rejected[0].find(files[0].path.string()), std::string::npos) << rep.rejected[0];
+  EXPECT_NE(rep.rejected[0].find("truncated"), std::string::npos) << rep.rejected[0];
+  EXPECT_TRUE(fs::exists(files[0].path.string() + ".rejected"));
+  EXPECT_EQ(io::list_checkpoints(dir.path()).size(), 1U);
+
+  // Both damaged.
+  std::string last = read_file(files[1].path);
+  last[100] = static_cast<char>(last[100] ^ 1);
+  write_file(files[1].path, last);
+  const std::string none =
+      message_of([&] { io::restore_latest_checkpoint(dir.path(), io::CheckpointParts{&b}, 7); });
+  EXPECT_NE(none.find("no usable checkpoint"), std::string::npos) << none;
+  EXPECT_NE(none.find(files[1].path.string()), std::string::npos) << none;
+  EXPECT_NE(none.find("checksum mismatch"), std::string::npos) << none;
+  TempDir empty;
+  EXPECT_NE(message_of([&] {
+              io::restore_latest_checkpoint(empty.path(), io::CheckpointParts{&b}, 7);
+            }).find("no checkpoint in"),
+            std::string::npos);
+}
+
+// A checkpoint that cannot be written (here: its name is taken by a directory, as a full disk or
+// a read-only directory would refuse it) is an error naming it; the earlier ones are untouched.
+TEST(Checkpoint, WriteFailureKeepsEarlierCheckpoints) {
+  const Scenario sc = small_run();
+  Simulation a(sc, build_specimen(sc));
+  TempDir dir;
+  for (int i = 0; i < 10; ++i) a.step();
+  const fs::path first = io::write_checkpoint(dir.path(), io::CheckpointParts{&a}, 7);
+  const std::string first_bytes = read_file(first);
+  for (int i = 0; i < 10; ++i) a.step();
+  const fs::path blocked = io::checkpoint_path(dir.path(), a.steps());
+  fs::create_directories(blocked / "x");
+  const std::string m =
+      message_of([&] { io::write_checkpoint(dir.path(), io::CheckpointParts{&a}, 7); });
+  EXPECT_NE(m.find("cannot write checkpoint '" + blocked.string() + "'"), std::string::npos) << m;
+  EXPECT_NE(m.find("earlier checkpoints are kept"), std::string::npos) << m;
+  EXPECT_EQ(difference(read_file(first), first_bytes), "");
+  for (const auto& e : fs::directory_iterator(dir.path()))
+    EXPECT_EQ(e.path().filename().string().find(".tmp."), std::string::npos) << e.path();
+  if (::geteuid() != 0) {  // root ignores permissions
+    fs::remove_all(blocked);
+    fs::permissions(dir.path(), fs::perms::owner_read | fs::perms::owner_exec);
+    const std::string ro =
+        message_of([&] { io::write_checkpoint(dir.path(), io::CheckpointParts{&a}, 7); });
+    EXPECT_NE(ro.find("Permission denied"), std::string::npos) << ro;
+    fs::permissions(dir.path(), fs::perms::owner_all);
+    EXPECT_EQ(difference(read_file(first), first_bytes), "");
+  }
+}
+
+// The same scenario at 1 and 2 threads: the whole state bitwise equal (the contact loop and the
+// per-body gather take their parallel paths: 15,758 contacts, 2,517 bodies > 2,048).
+TEST(Checkpoint, StateDoesNotDependOnThreadCount) {
+#if !defined(_OPENMP)
+  GTEST_SKIP() << "built without OpenMP";
+#else
+  std::string text = read_file(fs::path(RCDEM_SOURCE_DIR) / "tests/regression/small_run.toml");
+  const auto replace = [&](const std::string& from, const std::string& to) {
+    const auto at = text.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    text.replace(at, from.size(), to);
+  };
+  replace("size = [0.05, 0.05, 0.05]", "size = [0.1, 0.1, 0.1]");
+  replace("start = [0.005, 0.025, 0.025]", "start = [0.01, 0.05, 0.05]");
+  replace("end = [0.045, 0.025, 0.025]", "end = [0.09, 0.05, 0.05]");
+  replace("cylinder_length = 0.01", "cylinder_length = 0.02");
+  replace("velocity = -0.5", "velocity = -2.0");
+  replace("ramp_time = 5.0e-5", "ramp_time = 2.0e-5");
+  const Scenario sc = parse_scenario(text, "cube100.toml");
+  const Specimen specimen = build_specimen(sc);
+  ASSERT_GT(specimen.contacts.contact_count(), 2048);
+  const int threads = omp_get_max_threads();
+  std::string state[2];
+  Real damage[2] = {0, 0};
+  for (int t = 0; t < 2; ++t) {
+    omp_set_num_threads(t + 1);
+    Simulation sim(sc, specimen);
+    ASSERT_GT(sim.bodies().size(), 2048);
+    for (int i = 0; i < 250; ++i) sim.step();
+    state[t] = encode(sim);
+    damage[t] = sim.energy().damage;
+  }
+  omp_set_num_threads(threads);
+  EXPECT_GT(damage[0], 0.0) << "the test should reach damage";
+  EXPECT_EQ(damage[0], damage[1]);
+  EXPECT_EQ(difference(state[0], state[1]), "") << "1 and 2 threads differ";
+#endif
+}
