@@ -236,7 +236,8 @@ int study(const std::string& name, fs::path scenarios, fs::path out, bool force,
         "write into it",
         out.string());
   rcdem::io::prepare_output_directory(out, true);
-  return rcdem::run_study(o) == 0 ? 0 : 5;
+  const int failed = rcdem::run_study(o);
+  return failed == 0 ? 0 : failed < 0 ? 130 : 5;
 }
 
 }  // namespace

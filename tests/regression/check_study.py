@@ -7,11 +7,14 @@ invocation finds the case finished and does not rerun it.
 usage: check_study.py RCDEM_BINARY SOURCE_DIR
 """
 import csv
+import glob
 import json
 import os
+import signal
 import subprocess
 import sys
 import tempfile
+import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from checklist import Checklist  # noqa: E402
@@ -23,8 +26,24 @@ check = checks.check
 with tempfile.TemporaryDirectory() as tmp:
     out = os.path.join(tmp, "study")
     cmd = [rcdem, "study", "three_point_bending", "--quick", "--cases", "AN0", "-o", out]
+    # Interrupted once the beam is set up and stepping, then resumed by the same command.
+    p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=source)
+    marker = os.path.join(out, "cases", "AN0", "particles_initial.vtu")
+    t0 = time.time()
+    while not os.path.exists(marker) and time.time() - t0 < 300 and p.poll() is None:
+        time.sleep(0.2)
+    time.sleep(3.0)
+    p.send_signal(signal.SIGINT)
+    t_sig = time.time()
+    _, err = p.communicate(timeout=120)
+    check(p.returncode == 130 and "run the same command again to resume" in err,
+          f"SIGINT stops the study (exit {p.returncode}, {time.time() - t_sig:.1f} s) and says how "
+          "to resume")
+    ckpts = glob.glob(os.path.join(out, "cases", "AN0", "checkpoint_*.rcp"))
+    check(len(ckpts) >= 1, f"the interrupted case left a checkpoint ({len(ckpts)})")
     r = subprocess.run(cmd, capture_output=True, text=True, timeout=1200, cwd=source)
     check(r.returncode == 0, f"the quick AN0 study exits 0 ({r.stderr.strip()[-400:]})")
+    check("resumed from its last checkpoint" in r.stderr, "the second call resumes the case")
     rows = list(csv.DictReader(open(os.path.join(out, "peak_loads.csv"))))
     check(rows and list(rows[0]) == ["model", "interface", "peak_load_N", "deflection_at_peak_m"],
           "peak_loads.csv has the columns model,interface,peak_load_N,deflection_at_peak_m")

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <csignal>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -18,6 +19,7 @@
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
 #include "rcdem/io/atomic_file.hpp"
+#include "rcdem/io/checkpoint.hpp"
 #include "rcdem/io/plot_tool.hpp"
 #include "rcdem/io/scenario.hpp"
 #include "rcdem/solver/run.hpp"
@@ -29,6 +31,9 @@ namespace fs = std::filesystem;
 namespace {
 
 const char* const kBuiltinStudies[] = {"three_point_bending"};
+
+volatile std::sig_atomic_t g_study_signal = 0;
+extern "C" void on_study_signal(int sig) { g_study_signal = sig; }
 
 std::vector<fs::path> list_scenarios(const fs::path& dir) {
   std::vector<fs::path> files;
@@ -105,8 +110,9 @@ void write_tables(const fs::path& out, const std::vector<CaseRecord>& cases,
   io::write_file_atomically(out / "study.json", study.dump(2) + "\n");
 }
 
-// `rcdem --quiet run SCENARIO -o DIR --force` as a child process, output to DIR/run.log.
-pid_t spawn_run(const fs::path& scenario, const fs::path& dir, int threads) {
+// `rcdem run SCENARIO -o DIR --force` (or `rcdem run --resume DIR`) as a child process, output
+// to DIR/run.log (appended to on a resume).
+pid_t spawn_run(const fs::path& scenario, const fs::path& dir, int threads, bool resume) {
   // Through /proc/self/exe, not its target: the binary may be rebuilt while a study runs, and
   // the link still reaches the one that is running.
   const std::string exe = "/proc/self/exe";
@@ -114,10 +120,12 @@ pid_t spawn_run(const fs::path& scenario, const fs::path& dir, int threads) {
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+                                   O_WRONLY | O_CREAT | (resume ? O_APPEND : O_TRUNC), 0644);
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-  std::vector<std::string> args = {"rcdem", "run", scenario.string(), "-o", dir.string(),
-                                   "--force"};
+  std::vector<std::string> args =
+      resume ? std::vector<std::string>{"rcdem", "run", "--resume", dir.string()}
+             : std::vector<std::string>{"rcdem", "run", scenario.string(), "-o", dir.string(),
+                                        "--force"};
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -242,38 +250,47 @@ int run_study(const StudyOptions& o) {
     write_tables(o.out, records, o);  // after every case, so a stopped study keeps its table
   };
 
-  if (o.jobs <= 1) {
-    for (const std::size_t i : pending) {
-      const fs::path dir = prepare(i);
-      if (!quiet)
-        fmt::print(stderr, "{}: running ({})\n", records[i].name, todo[i].first.string());
-      try {
-        run_scenario(todo[i].second, dir);
-        finish(i, "");
-      } catch (const Error& e) {
-        finish(i, e.what());
-      }
-    }
-  } else {
-    // Cases side by side, each a child `rcdem run` with its share of the threads: small
-    // specimens scale better across processes than across threads.
+  // Every case is a child `rcdem run`, with its share of the threads: the child checkpoints (every
+  // 10 minutes and on SIGINT/SIGTERM), so an interrupted case resumes where it stopped, and
+  // small specimens scale better across processes than across threads.
+  {
+    g_study_signal = 0;
+    struct sigaction sa {};
+    sa.sa_handler = on_study_signal;  // no SA_RESTART: waitpid returns EINTR
+    sigemptyset(&sa.sa_mask);
+    struct sigaction old_int {}, old_term {};
+    ::sigaction(SIGINT, &sa, &old_int);
+    ::sigaction(SIGTERM, &sa, &old_term);
     std::map<pid_t, std::size_t> running;
     std::size_t next = 0;
     while (next < pending.size() || !running.empty()) {
       while (next < pending.size() && static_cast<int>(running.size()) < o.jobs) {
         const std::size_t i = pending[next++];
-        const fs::path dir = prepare(i);
+        const fs::path existing = o.out / "cases" / records[i].name;
+        const bool resume = !o.force && fs::exists(existing / "scenario.toml") &&
+                            !io::list_checkpoints(existing).empty();
+        const fs::path dir = resume ? existing : prepare(i);
         if (!quiet)
-          fmt::print(stderr, "{}: started ({}; log {})\n", records[i].name,
+          fmt::print(stderr, "{}: {} ({}; log {})\n", records[i].name,
+                     resume ? "resumed from its last checkpoint" : "started",
                      todo[i].first.string(), (dir / "run.log").string());
         try {
-          running[spawn_run(todo[i].first, dir, o.threads_per_job)] = i;
+          running[spawn_run(todo[i].first, dir, o.threads_per_job, resume)] = i;
         } catch (const Error& e) {
           finish(i, e.what());
         }
       }
+      if (running.empty()) continue;
       int status = 0;
       const pid_t pid = ::waitpid(-1, &status, 0);
+      if (pid < 0 && errno == EINTR) {
+        // SIGINT/SIGTERM: pass it on (a terminal's ^C reached them already); each run then
+        // checkpoints and exits, and no further case starts.
+        const int sig = g_study_signal;
+        for (const auto& [child, _] : running) ::kill(child, sig);
+        next = pending.size();
+        continue;
+      }
       if (pid < 0) fail("waiting for the study's runs: {}", std::strerror(errno));
       const auto it = running.find(pid);
       if (it == running.end()) continue;
@@ -282,8 +299,22 @@ int run_study(const StudyOptions& o) {
       const fs::path dir = o.out / "cases" / records[i].name;
       const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0 &&
                       fs::exists(dir / "summary.json");
+      if (!ok && g_study_signal != 0) {
+        ++done;
+        records[i].status = "interrupted";
+        write_tables(o.out, records, o);
+        continue;
+      }
       finish(i, ok ? "" : last_line(dir / "run.log"));
     }
+    ::sigaction(SIGINT, &old_int, nullptr);
+    ::sigaction(SIGTERM, &old_term, nullptr);
+  }
+  if (g_study_signal != 0) {
+    fmt::print(stderr,
+               "study interrupted: every running case wrote a checkpoint; run the same command "
+               "again to resume (finished cases are kept)\n");
+    return -1;
   }
   if (!o.report_script.empty()) io::run_plot_tool(o.report_script, o.out);
   if (!quiet)

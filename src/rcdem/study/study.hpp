@@ -24,7 +24,8 @@ struct StudyOptions {
 // known studies if `name` is none of them.
 std::filesystem::path builtin_study_scenarios(const std::string& name, bool quick);
 
-// Runs the study; returns the number of cases that failed (0: all finished).
+// Runs the study; returns the number of cases that failed (0: all finished), or -1 when a signal
+// interrupted it (each running case checkpointed; the same call resumes).
 int run_study(const StudyOptions& options);
 
 }  // namespace rcdem
