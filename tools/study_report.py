@@ -95,7 +95,7 @@ def behaviour(d, p):
     if crack_i is None:
         return {"cracking_load_N": None, "cracking_deflection_m": None,
                 "peak_load_N": float(p[peak_i]), "deflection_at_peak_m": float(d[peak_i]),
-                "recovers": None, "class": "no drop (run ended before cracking)"}
+                "recovers": None, "class": "ductile (no drop)"}
     p_cr = float(p[crack_i])
     after = p[crack_i + 1:]
     # Ductile: after the drop the load climbs back above the cracking load.
@@ -108,8 +108,8 @@ def behaviour(d, p):
 
 
 def initial_stiffness(d, p, p_ref):
-    """Least-squares slope of load on deflection between 10% and 40% of the cracking load
-    (after the loading plate's ramp), through the first crossing of 40%."""
+    """Least-squares slope of load on deflection between 10% and 40% of p_ref (the load at which
+    the first local point broke: still elastic), through the first crossing of 40%."""
     if p_ref is None or p_ref <= 0:
         p_ref = float(np.max(p))
     end = int(np.argmax(p >= 0.4 * p_ref))
@@ -251,7 +251,8 @@ def main(study):
             f.writelines(f"{a:.8g},{b:.8g}\n" for a, b in zip(d, p))
         summary = json.load(open(os.path.join(case_dir, "summary.json")))
         beh = behaviour(d, p)
-        k0 = initial_stiffness(d, p, beh["cracking_load_N"])
+        first = summary.get("first_cracking") or {}
+        k0 = initial_stiffness(d, p, first.get("load_N") or beh["cracking_load_N"])
         kt, kb = timoshenko_stiffness(r["model"])
         # The supports are 20 mm wide: once the beam bends it bears on their inner edges.
         kt_inner, _ = timoshenko_stiffness(r["model"], SPAN - 0.020)
@@ -355,8 +356,10 @@ def main(study):
               "under EL too) and its error is against the experiment.", "",
               "## Behaviour per case", "",
               f"Cracking load: the largest load before the load first falls {100 * DROP:g}% below it. "
-              "Ductile: the load later rises above the cracking load again; brittle: it does not. "
-              "Initial stiffness: least-squares slope between 10% and 40% of the cracking load; "
+              "Ductile: the load later rises above the cracking load again, or never drops that much (no "
+              "drop); brittle: it drops and does not recover. "
+              "Initial stiffness K0: least-squares slope between 10% and 40% of the load at which the first "
+              "local point broke; "
               "Timoshenko: simply supported, central load, uncracked transformed section, "
               f"E = {E_CONCRETE / 1e9:.2f} GPa, ν = {NU_CONCRETE}, κ = 5/6.", "",
               "| case | cracking load (kN) | peak (kN) | δ at peak (mm) | class | K0 (kN/mm) | "
@@ -382,7 +385,7 @@ def main(study):
         if pick:
             classes.append((model, pick[0]["class"]))
     transition = next((m for (m, k), (_, kp) in zip(classes[1:], classes[:-1])
-                       if k == "ductile" and kp == "brittle"), None)
+                       if k.startswith("ductile") and kp == "brittle"), None)
     report["classes_nl_b"] = dict(classes)
     report["transition_at"] = transition
     lines += ["", "## Brittle-to-ductile transition", "",
