@@ -80,11 +80,11 @@ struct NodeGeometry {
 // What the node does to its two cylinders in one update: forces and moments about each centre
 // (equal and opposite forces; moments balance about any point), in the world frame.
 struct NodeForces {
-  Vec3 force_a, torque_a;
-  Vec3 force_b, torque_b;
-  Vec3 position;    // (7)
-  Vec3 axis;        // (8)
-  Real dissipated;  // plastic work in this update [J], f_y A |plastic increment|
+  Vec3 force_a = Vec3::Zero(), torque_a = Vec3::Zero();
+  Vec3 force_b = Vec3::Zero(), torque_b = Vec3::Zero();
+  Vec3 position = Vec3::Zero();  // (7)
+  Vec3 axis = Vec3::Zero();      // (8)
+  Real dissipated = 0;           // plastic work in this update [J], f_y A |plastic increment|
 };
 
 // (7)-(8) for cylinders at x_a, q_a and x_b, q_b.

@@ -27,12 +27,22 @@
 #include "rcdem/io/checkpoint.hpp"
 #include "rcdem/io/crack_record.hpp"
 #include "rcdem/io/plot_tool.hpp"
+#include "rcdem/io/run_manifest.hpp"
 #include "rcdem/io/run_output.hpp"
 #include "rcdem/io/specimen_output.hpp"
+#include "rcdem/solver/run_signals.hpp"
 
 namespace rcdem {
 
 namespace fs = std::filesystem;
+using io::iso_now;
+using io::Manifest;
+using io::read_text;
+using io::RunLock;
+using io::thread_count;
+using io::Inputs;
+using io::scenario_inputs;
+using io::remove_stale_temporaries;
 
 namespace {
 
@@ -46,216 +56,6 @@ const PlateSettings* find(const Scenario& s, const std::string& name) {
   for (const auto& p : s.plates)
     if (p.name == name) return &p;
   return nullptr;
-}
-
-// ---- Signals. During the set-up (generation: seconds to minutes) there is nothing to save: the
-// process ends at once, saying so. In the loop the handler only raises a flag, which the loop
-// reads after every step.
-
-volatile std::sig_atomic_t g_signal = 0;
-char g_lock_path[4096] = {0};
-volatile std::sig_atomic_t g_resuming = 0;
-
-extern "C" void on_setup_signal(int sig) {
-  static const char fresh[] =
-      "\nrcdem: interrupted during the set-up, before the first step: nothing to resume; start "
-      "the run again (with --force if its directory is not empty)\n";
-  static const char resuming[] =
-      "\nrcdem: interrupted during the set-up of a resumed run: its checkpoints are untouched; "
-      "resume it again\n";
-  const ssize_t ignored = g_resuming ? ::write(STDERR_FILENO, resuming, sizeof resuming - 1)
-                                     : ::write(STDERR_FILENO, fresh, sizeof fresh - 1);
-  (void)ignored;
-  if (g_lock_path[0] != 0) ::unlink(g_lock_path);
-  ::_exit(128 + sig);
-}
-
-extern "C" void on_stop_signal(int sig) {
-  if (g_signal != 0) {
-    // A second signal: the user insists. Die as the signal says (async-signal-safe calls only).
-    std::signal(sig, SIG_DFL);
-    std::raise(sig);
-    return;
-  }
-  g_signal = sig;
-}
-
-class SignalGuard {
- public:
-  SignalGuard(bool on, const fs::path& lock, bool resuming) : on_(on) {
-    if (!on_) return;
-    g_signal = 0;
-    g_resuming = resuming ? 1 : 0;
-    const std::string l = lock.string();
-    if (l.size() < sizeof g_lock_path) std::memcpy(g_lock_path, l.c_str(), l.size() + 1);
-    install(on_setup_signal, &old_int_, &old_term_);
-  }
-  // From the first step on: finish the step, checkpoint, stop.
-  void loop() {
-    if (on_) install(on_stop_signal, nullptr, nullptr);
-  }
-  ~SignalGuard() {
-    if (!on_) return;
-    ::sigaction(SIGINT, &old_int_, nullptr);
-    ::sigaction(SIGTERM, &old_term_, nullptr);
-    g_signal = 0;
-    g_lock_path[0] = 0;
-  }
-  SignalGuard(const SignalGuard&) = delete;
-  SignalGuard& operator=(const SignalGuard&) = delete;
-
- private:
-  static void install(void (*handler)(int), struct sigaction* old_int, struct sigaction* old_term) {
-    struct sigaction sa = {};
-    sa.sa_handler = handler;
-    sigemptyset(&sa.sa_mask);
-    sa.sa_flags = SA_RESTART;  // writes in progress go on; the flag is read after the step
-    ::sigaction(SIGINT, &sa, old_int);
-    ::sigaction(SIGTERM, &sa, old_term);
-  }
-  bool on_;
-  struct sigaction old_int_ = {};
-  struct sigaction old_term_ = {};
-};
-
-// ---- The run directory: one rcdem at a time, its manifest. -----------------------------------
-
-// flock on DIR/run.lock while the run goes on (released by the kernel however the process ends):
-// a second `rcdem run --resume DIR` beside a live one is refused instead of mixing files.
-class RunLock {
- public:
-  RunLock(const fs::path& dir, bool on) : path_(dir / "run.lock") {
-    if (!on) return;
-    fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-    if (fd_ < 0)
-      fail("cannot write in the run directory '{}': {}", dir.string(), std::strerror(errno));
-    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
-      ::close(fd_);
-      fd_ = -1;
-      fail("another rcdem is running in '{}' (it holds run.lock); wait for it or stop it first",
-           dir.string());
-    }
-  }
-  ~RunLock() {
-    if (fd_ < 0) return;
-    ::unlink(path_.c_str());
-    ::close(fd_);
-  }
-  RunLock(const RunLock&) = delete;
-  RunLock& operator=(const RunLock&) = delete;
-
- private:
-  fs::path path_;
-  int fd_ = -1;
-};
-
-std::string iso_now() {
-  const std::time_t t = std::time(nullptr);
-  std::tm tm{};
-  ::gmtime_r(&t, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
-}
-
-int thread_count() {
-#if defined(_OPENMP)
-  return omp_get_max_threads();
-#else
-  return 1;
-#endif
-}
-
-std::string read_text(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  if (!in) return {};
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// The scenario's inputs: its text and the fragments it includes (resolved from `file`, where the
-// scenario lives), each with its FNV-1a hash, and the hash of all together, which a checkpoint
-// must match.
-struct Inputs {
-  nlohmann::ordered_json list = nlohmann::ordered_json::array();
-  std::uint64_t hash = 0;
-};
-
-Inputs scenario_inputs(const std::string& text, const fs::path& file) {
-  Inputs in;
-  in.hash = io::fnv1a64(text);
-  in.list.push_back({{"path", file.string()}, {"fnv1a64", fmt::format("{:016x}", in.hash)}});
-  std::vector<std::string> includes;
-  try {
-    const toml::table t = toml::parse(text);
-    if (const toml::node* inc = t.get("include")) {
-      if (auto one = inc->value_exact<std::string>()) includes.push_back(*one);
-      if (const auto* arr = inc->as_array())
-        for (const auto& e : *arr)
-          if (auto f = e.value_exact<std::string>()) includes.push_back(*f);
-    }
-  } catch (const toml::parse_error&) {
-    // Parsed before, so not reached; the text's hash alone then.
-  }
-  for (const auto& f : includes) {
-    const fs::path p = fs::path(f).is_absolute() ? fs::path(f) : file.parent_path() / f;
-    const std::string body = read_text(p);
-    const std::uint64_t h = io::fnv1a64(body);
-    in.hash = io::fnv1a64(body, in.hash ^ 0x9e3779b97f4a7c15ULL);
-    in.list.push_back(
-        {{"path", p.lexically_normal().string()}, {"fnv1a64", fmt::format("{:016x}", h)}});
-  }
-  return in;
-}
-
-// DIR/manifest.json: the scenario as run, the rcdem that ran it, threads, times, exit state and
-// one entry per session (start, and each --resume). Rewritten atomically at the start, at every
-// checkpoint and at the end.
-class Manifest {
- public:
-  Manifest(fs::path dir, bool on) : path_(std::move(dir) / "manifest.json"), on_(on) {}
-  nlohmann::ordered_json& json() { return j_; }
-  nlohmann::ordered_json& session() { return j_["sessions"].back(); }
-  void load_existing() {
-    if (!on_) return;
-    const std::string text = read_text(path_);
-    j_ = nlohmann::ordered_json::parse(text, nullptr, false);
-    if (j_.is_discarded() || !j_.is_object()) j_ = nlohmann::ordered_json::object();
-    if (!j_.contains("sessions") || !j_["sessions"].is_array())
-      j_["sessions"] = nlohmann::ordered_json::array();
-    // A session still "running" ended without a word (killed, machine down).
-    for (auto& s : j_["sessions"])
-      if (s.value("exit_state", "") == "running") {
-        s["exit_state"] = "killed";
-        s["note"] = "ended without writing its exit state (SIGKILL, crash or power loss)";
-      }
-  }
-  void write() const {
-    if (on_) io::write_file_atomically(path_, j_.dump(2) + "\n");
-  }
-  void write_quietly() const noexcept {
-    try {
-      write();
-    } catch (...) {
-    }
-  }
-
- private:
-  fs::path path_;
-  bool on_;
-  nlohmann::ordered_json j_ = nlohmann::ordered_json::object();
-};
-
-void remove_stale_temporaries(const fs::path& dir) {
-  std::error_code ec;
-  for (const fs::path& d : {dir, dir / "snapshots"})
-    for (const auto& e : fs::directory_iterator(d, ec))
-      if (e.path().filename().string().find(".tmp.") != std::string::npos) fs::remove(e.path(), ec);
-}
-
-const char* signal_name(int sig) {
-  return sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "a signal";
 }
 
 }  // namespace
@@ -612,9 +412,9 @@ RunSummary run_scenario(const Scenario& sc, const fs::path& out, const RunOption
           throw with_resume_hint(e);
         }
       }
-      if (g_signal != 0) {
+      if (pending_stop_signal() != 0) {
         // Interrupted: the state after this whole step is saved, with what the run has so far.
-        const int sig = g_signal;
+        const int sig = pending_stop_signal();
         try {
           if (checkpointed_step != n) checkpoint(now);
           history.write(out / "history.csv");

@@ -1,0 +1,33 @@
+#pragma once
+// SIGINT/SIGTERM during a run (docs/checkpoint.md). During the set-up (generation: seconds to
+// minutes) there is nothing to save: the process ends at once, saying so. From the first step on
+// the handler only raises a flag, which the loop reads after every step to checkpoint and stop.
+#include <csignal>
+#include <filesystem>
+
+namespace rcdem {
+
+// The signal that asked the loop to stop (0: none).
+int pending_stop_signal();
+
+const char* signal_name(int sig);
+
+class SignalGuard {
+ public:
+  // `on`: install the handlers (restored by the destructor); `lock`: the run lock file the
+  // set-up handler removes; `resuming`: for its message.
+  SignalGuard(bool on, const std::filesystem::path& lock, bool resuming);
+  // From the first step on: finish the step, checkpoint, stop.
+  void loop();
+  ~SignalGuard();
+  SignalGuard(const SignalGuard&) = delete;
+  SignalGuard& operator=(const SignalGuard&) = delete;
+
+ private:
+  static void install(void (*handler)(int), struct sigaction* old_int, struct sigaction* old_term);
+  bool on_;
+  struct sigaction old_int_ = {};
+  struct sigaction old_term_ = {};
+};
+
+}  // namespace rcdem
