@@ -50,6 +50,7 @@ E_CONCRETE, NU_CONCRETE, E_STEEL = 32.58e9, 0.1517, 200e9
 # Cracking load: the largest load before the load first falls by this fraction below its running
 # maximum (a crack through the tension zone; smaller wiggles are single facets breaking).
 DROP = 0.15
+RECOVERY_FACTOR = 2.0
 
 
 def read_csv(path):
@@ -97,10 +98,13 @@ def behaviour(d, p):
                 "peak_load_N": float(p[peak_i]), "deflection_at_peak_m": float(d[peak_i]),
                 "recovers": None, "class": "ductile (no drop)"}
     p_cr = float(p[crack_i])
-    after = p[crack_i + 1:]
-    # Ductile: after the drop the load climbs back above the cracking load.
-    drop_i = crack_i + 1 + int(np.argmin(after[: max(1, np.argmax(after < (1 - DROP) * p_cr) + 1)]))
-    recovers = bool(np.any(p[drop_i:] > p_cr))
+    # Ductile: once the deflection is past twice the cracking deflection (the crack has opened and
+    # the steel carries the tension), the load climbs back above the cracking load. A brief
+    # recovery within the cracking event itself (a second facet cluster holding on) does not
+    # count; a run ended by the load drop has nothing past it: brittle.
+    later = p[d >= RECOVERY_FACTOR * d[crack_i]]
+    drop_i = crack_i + 1 + int(np.argmin(p[crack_i + 1:])) if crack_i + 1 < len(p) else crack_i
+    recovers = bool(later.size and np.any(later > p_cr))
     return {"cracking_load_N": p_cr, "cracking_deflection_m": float(d[crack_i]),
             "peak_load_N": float(p[peak_i]), "deflection_at_peak_m": float(d[peak_i]),
             "post_peak_min_N": float(p[drop_i]), "recovers": recovers,
@@ -356,8 +360,8 @@ def main(study):
               "under EL too) and its error is against the experiment.", "",
               "## Behaviour per case", "",
               f"Cracking load: the largest load before the load first falls {100 * DROP:g}% below it. "
-              "Ductile: the load later rises above the cracking load again, or never drops that much (no "
-              "drop); brittle: it drops and does not recover. "
+              "Ductile: past twice the cracking deflection the load rises above the cracking load again, "
+              "or it never drops that much (no drop); brittle: it does not. "
               "Initial stiffness K0: least-squares slope between 10% and 40% of the load at which the first "
               "local point broke; "
               "Timoshenko: simply supported, central load, uncracked transformed section, "
