@@ -6,6 +6,10 @@
 
 namespace rcdem::io {
 
+// Throws rcdem::Error "cannot write 'PATH': REASON" on failure (the temporary is removed).
 void write_file_atomically(const std::filesystem::path& path, std::string_view content);
+
+// The same, returning 0 or the errno of the failure, for callers with their own message.
+int try_write_file_atomically(const std::filesystem::path& path, std::string_view content);
 
 }  // namespace rcdem::io

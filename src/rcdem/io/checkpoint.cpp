@@ -1,5 +1,7 @@
 #include "rcdem/io/checkpoint.hpp"
 
+#include "rcdem/io/atomic_file.hpp"
+
 #include <fcntl.h>
 #include <fmt/format.h>
 #include <sys/stat.h>
@@ -791,33 +793,9 @@ fs::path write_checkpoint(const fs::path& dir, const CheckpointParts& parts,
   const std::string data = encode_checkpoint(parts, scenario_hash);
   const fs::path path = checkpoint_path(dir, parts.sim->steps());
   const fs::path tmp = path.string() + ".tmp." + std::to_string(::getpid());
-  const auto failed = [&](int err) {
-    ::unlink(tmp.c_str());
+  if (const int err = try_write_file_atomically(path, data))
     fail("cannot write checkpoint '{}': {}; the earlier checkpoints are kept", path.string(),
          std::strerror(err));
-  };
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0)
-    fail("cannot write checkpoint '{}': {}; the earlier checkpoints are kept", path.string(),
-         std::strerror(errno));
-  std::size_t done = 0;
-  while (done < data.size()) {
-    const ssize_t n = ::write(fd, data.data() + done, data.size() - done);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      const int err = errno;
-      ::close(fd);
-      failed(err);
-    }
-    done += static_cast<std::size_t>(n);
-  }
-  if (::fsync(fd) != 0) {
-    const int err = errno;
-    ::close(fd);
-    failed(err);
-  }
-  if (::close(fd) != 0) failed(errno);
-  if (::rename(tmp.c_str(), path.c_str()) != 0) failed(errno);
   sync_directory(dir);
   // Keep the newest `keep`; drop what an interrupted write left.
   const std::vector<CheckpointFile> all = list_checkpoints(dir);
