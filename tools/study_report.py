@@ -255,6 +255,9 @@ def main(study):
             f.writelines(f"{a:.8g},{b:.8g}\n" for a, b in zip(d, p))
         summary = json.load(open(os.path.join(case_dir, "summary.json")))
         beh = behaviour(d, p)
+        # The run tracks the peak at every step; the history only samples it.
+        beh["peak_load_N"] = summary.get("peak_load_N", beh["peak_load_N"])
+        beh["deflection_at_peak_m"] = abs(summary.get("displacement_at_peak_m", beh["deflection_at_peak_m"]))
         first = summary.get("first_cracking") or {}
         k0 = initial_stiffness(d, p, first.get("load_N") or beh["cracking_load_N"])
         kt, kb = timoshenko_stiffness(r["model"])
