@@ -221,7 +221,8 @@ int run_study(const StudyOptions& o) {
 
   int failed = 0;
   std::size_t done = 0;
-  // A directory without summary.json is a run that was interrupted: it starts again.
+  // A case directory without summary.json nor a checkpoint (interrupted during its set-up):
+  // cleared, and the case starts again.
   const auto prepare = [&](std::size_t i) {
     const fs::path dir = o.out / "cases" / records[i].name;
     std::error_code e;

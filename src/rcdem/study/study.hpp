@@ -15,7 +15,7 @@ struct StudyOptions {
   std::string report_script;         // tools/<script> run on DIR at the end ("" for none)
   std::string label;                 // what the study is, for study.json and messages
   bool force = false;                // rerun finished cases
-  int jobs = 1;                      // cases run side by side (child processes) when > 1
+  int jobs = 1;                      // cases run side by side (each a child `rcdem run`)
   int threads_per_job = 1;           // OpenMP threads of each child
 };
 
