@@ -265,8 +265,8 @@ TEST(Checkpoint, DamagedFilesAreRejectedWithTheReason) {
   magic[0] = 'X';
   EXPECT_NE(restore_msg(magic).find("not an rcdem checkpoint"), std::string::npos);
   std::string newer = bytes;
-  newer[8] = 2;
-  EXPECT_NE(restore_msg(newer).find("format version 2 is newer"), std::string::npos);
+  newer[8] = static_cast<char>(io::kCheckpointVersion + 1);
+  EXPECT_NE(restore_msg(newer).find(fmt::format("format version {} is newer", io::kCheckpointVersion + 1)), std::string::npos);
   EXPECT_NE(restore_msg(bytes + "x").find("data after the end"), std::string::npos);
   // Another scenario's inputs, another specimen.
   write_file(dir.path() / "ok.rcp", bytes);

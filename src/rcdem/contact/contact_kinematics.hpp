@@ -34,6 +34,20 @@ struct PointKinematics {
   return k;
 }
 
+// cos and sin of an angle that is nearly always tiny (a pair's spin in one step, ~1e-6 rad): their
+// Taylor series to within rounding below 1e-3 rad (the first omitted terms are < 2e-21), libm's
+// above. A libm sincos per contact was 2.5% of a step.
+[[gnu::always_inline]] inline void small_angle_cos_sin(Real a, Real& c, Real& s) {
+  if (std::abs(a) < 1e-3) {
+    const Real a2 = a * a;
+    c = 1.0 - a2 * (0.5 - a2 * (1.0 / 24.0));
+    s = a * (1.0 - a2 * (1.0 / 6.0 - a2 * (1.0 / 120.0)));
+  } else {
+    c = std::cos(a);
+    s = std::sin(a);
+  }
+}
+
 // SPEC 4: the contact plane's frame is carried from the previous step into the current one:
 // turned by the rotation taking the old normal to the new one (about n_old x n_new), then by the
 // pair's mean spin about the new normal, then cleared of any normal component and renormalised.
@@ -52,7 +66,9 @@ struct PlaneRotation {
     const Real c = n_old.dot(n);
     Vec3 r = c > -0.5 ? Vec3(c * t + k.cross(t) + (k.dot(t) / (1.0 + c)) * k) : t;
     // About n: t stays perpendicular to n, so R t = cos(spin) t + sin(spin) n x t.
-    r = std::cos(spin) * r + std::sin(spin) * n.cross(r);
+    Real cos_spin, sin_spin;
+    small_angle_cos_sin(spin, cos_spin, sin_spin);
+    r = cos_spin * r + sin_spin * n.cross(r);
     r -= r.dot(n) * n;
     const Real r2 = r.squaredNorm();
     return r2 > 0.0 ? Vec3(r / std::sqrt(r2)) : Vec3::Zero();

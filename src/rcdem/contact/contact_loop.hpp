@@ -49,7 +49,7 @@ void evaluate_contacts(const Law& law, const ContactNetwork& net, const Bodies& 
     const Vec3 u0 = dx - rb * (x0[b] - x0[a]);
     const Eigen::Matrix3d dr = rb - ra;
     Vec3 f = Vec3::Zero(), moment_a = Vec3::Zero();
-    Real strain = 0.0, damage = 0.0, friction = 0.0;
+    Real damage = 0.0, friction = 0.0;
     for (Index m = net.point_begin[c]; m < net.point_begin[c + 1]; ++m) {
       const Vec3 r = net.point_position0[m] - x0[a];
       const Vec3 u = u0 + dr * r;
@@ -61,14 +61,12 @@ void evaluate_contacts(const Law& law, const ContactNetwork& net, const Bodies& 
       const Vec3 fp = -s.fn * n + s.fs.x() * t1 + s.fs.y() * t2;
       f += fp;
       moment_a += (ra * r + 0.5 * u).cross(fp);
-      strain += 0.5 * s.fn * s.fn / pc.kn + 0.5 * s.fs.squaredNorm() / pc.ks;
       damage += res.dissipated - res.dissipated_friction;
       friction += res.dissipated_friction;
     }
     cs.force_b[c] = f;
     cs.torque_b[c] = moment_a - dx.cross(f);
     cs.torque_a[c] = -moment_a;
-    cs.strain_energy[c] = strain;
     cs.dissipated_damage[c] = damage;
     cs.dissipated_friction[c] = friction;
   });

@@ -30,9 +30,18 @@ void ContactState::init(const ContactNetwork& net, const std::vector<Vec3>& x,
   force_b.assign(nc, Vec3::Zero());
   torque_b.assign(nc, Vec3::Zero());
   torque_a.assign(nc, Vec3::Zero());
-  strain_energy.assign(nc, 0.0);
   dissipated_damage.assign(nc, 0.0);
   dissipated_friction.assign(nc, 0.0);
+}
+
+Real ContactState::strain_energy(const ContactNetwork& net, Index c) const {
+  Real e = 0.0;
+  for (Index m = net.point_begin[c]; m < net.point_begin[c + 1]; ++m) {
+    const LocalPointState& s = point[m];
+    const LocalPointConstants& k = net.constants[m];
+    e += 0.5 * s.fn * s.fn / k.kn + 0.5 * s.fs.squaredNorm() / k.ks;
+  }
+  return e;
 }
 
 }  // namespace rcdem

@@ -25,7 +25,6 @@ struct ContactState {
   std::vector<Vec3> force_b;              // total force on B (on A: its opposite)
   std::vector<Vec3> torque_b;             // about B's centre
   std::vector<Vec3> torque_a;             // about A's centre
-  std::vector<Real> strain_energy;        // stored in the contact's springs now [J]
   std::vector<Real> dissipated_damage;    // during this step [J]
   std::vector<Real> dissipated_friction;  // during this step [J]
 
@@ -36,6 +35,10 @@ struct ContactState {
   Vec3 to_world(Index c, const Vec3& local) const {
     return local.x() * tangent[c] + local.y() * normal[c].cross(tangent[c]);
   }
+
+  // The elastic energy held by contact c's local points now: sum of fn^2/2kn + |fs|^2/2ks
+  // (SPEC 11). Not kept per step: the ledger asks for it when it reports.
+  Real strain_energy(const ContactNetwork& net, Index c) const;
 
   void init(const ContactNetwork& net, const std::vector<Vec3>& positions,
             const std::vector<Vec3>* anchor0 = nullptr, const std::vector<Vec3>* axis0 = nullptr);

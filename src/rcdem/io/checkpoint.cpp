@@ -337,19 +337,18 @@ struct CheckpointAccess {
     r.f(p.un);
     r.v(p.us);
     r.f(p.un_max);
-    r.f(p.us_max);
+    r.f(p.us_max_sq);
     r.f(p.damage);
   }
 
   template <typename Ar, typename C>
   static void contact_state(Ar& ar, const std::string& name, C& c) {
-    ar.table(name, c.normal.size(), 18, [&](auto& r, std::size_t i) {
+    ar.table(name, c.normal.size(), 17, [&](auto& r, std::size_t i) {
       r.v(c.normal[i]);
       r.v(c.tangent[i]);
       r.v(c.force_b[i]);
       r.v(c.torque_b[i]);
       r.v(c.torque_a[i]);
-      r.f(c.strain_energy[i]);
       r.f(c.dissipated_damage[i]);
       r.f(c.dissipated_friction[i]);
     });

@@ -210,35 +210,27 @@ void Simulation::step() {
   gather_forces();
   integrate();
 
-  // Energy ledger (sums in a fixed order: deterministic).
-  Real strain = 0.0, damage = 0.0, friction = 0.0;
+  // Energy ledger: what this step dissipated (sums in a fixed order: deterministic).
+  Real damage = 0.0, friction = 0.0;
   for (Index c = 0; c < net.contact_count(); ++c) {
-    strain += contacts_.strain_energy[c];
     damage += contacts_.dissipated_damage[c];
     friction += contacts_.dissipated_friction[c];
   }
-  for (Index j = 0; j < plate_contacts_.size(); ++j) {
-    strain += plate_contacts_.strain_energy[j];
+  for (Index j = 0; j < plate_contacts_.size(); ++j)
     friction += plate_contacts_.dissipated_friction[j];
-  }
   for (const auto& st : interface_states_)
-    for (std::size_t c = 0; c < st.strain_energy.size(); ++c) {
-      strain += st.strain_energy[c];
+    for (std::size_t c = 0; c < st.dissipated_damage.size(); ++c) {
       damage += st.dissipated_damage[c];
       friction += st.dissipated_friction[c];
     }
   Real plastic = 0.0;
-  for (std::size_t j = 0; j < nodes_.size(); ++j) {
-    strain += node_elastic_energy(nodes_[j], node_states_[j]);
-    plastic += node_forces_[j].dissipated;
-  }
+  for (std::size_t j = 0; j < nodes_.size(); ++j) plastic += node_forces_[j].dissipated;
   energy_.plastic += plastic;
   Real damping_work = 0.0, kinetic = 0.0;
   for (std::size_t i = 0; i < body_kinetic_.size(); ++i) {
     damping_work += body_damping_work_[i];
     kinetic += body_kinetic_[i];
   }
-  energy_.strain = strain;
   energy_.damage += damage;
   energy_.friction += friction;
   energy_.damping += damping_work;
@@ -374,6 +366,31 @@ void Simulation::integrate() {
           "(time step {:.4g} s, stable estimate {:.4g} s); lower solver.time_step or "
           "solver.dt_safety",
           steps_, time_, i, (b.velocity[i] * dt).norm(), dt_, stable_dt_);
+}
+
+namespace {
+// The elastic energy held by a network's local points (SPEC 11), summed in a fixed order.
+Real points_strain_energy(const ContactNetwork& net, const ContactState& cs) {
+  Real e = 0.0;
+  for (Index c = 0; c < net.contact_count(); ++c) e += cs.strain_energy(net, c);
+  return e;
+}
+}  // namespace
+
+Real Simulation::strain_energy() const {
+  Real strain = points_strain_energy(specimen_.contacts, contacts_);
+  for (Index j = 0; j < plate_contacts_.size(); ++j) strain += plate_contacts_.strain_energy[j];
+  for (std::size_t k = 0; k < interface_states_.size(); ++k)
+    strain += points_strain_energy(specimen_.interfaces[k].net, interface_states_[k]);
+  for (std::size_t j = 0; j < nodes_.size(); ++j)
+    strain += node_elastic_energy(nodes_[j], node_states_[j]);
+  return strain;
+}
+
+Energy Simulation::energy() const {
+  Energy e = energy_;
+  e.strain = strain_energy();
+  return e;
 }
 
 Index Simulation::damaged_points() const {

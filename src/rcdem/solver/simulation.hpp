@@ -64,7 +64,13 @@ class Simulation {
   const Plate* find_plate(const std::string& name) const;
   const PulledBar* find_pulled_bar(const std::string& name) const;
   const std::vector<PulledBar>& pulled_bars() const { return pulled_; }
-  const Energy& energy() const { return energy_; }
+  // The ledger now. The strain energy is a function of the state, summed here on demand (the
+  // loop does not compute it every step: two divisions per local point).
+  Energy energy() const;
+  Real strain_energy() const;
+  // The ledger's running sums (work, kinetic energy, dissipation) without the strain energy
+  // (left 0): no sweep over the local points, for use every step.
+  const Energy& ledger() const { return energy_; }
 
   // The bars (SPEC 7-8): cylinders are bodies [concrete_count, size); nodes join consecutive ones.
   Index concrete_count() const { return specimen_.concrete(); }

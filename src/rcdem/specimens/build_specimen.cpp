@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "rcdem/packing/space_filling_order.hpp"
 #include "rcdem/specimens/specimen.hpp"
 #include "rcdem/specimens/specimen_registry.hpp"
 #include "rcdem/tessellation/cell_complex.hpp"
@@ -32,6 +33,7 @@ Specimen build_specimen(const Scenario& scenario) {
     s.bars.push_back(build_straight_bar(
         b.start, b.end, b.diameter, SteelMaterial{b.E, b.nu, b.f_y, b.density}, b.cylinder_length));
   s.particles = generate_packing(scenario.generation, s.geometry, &s.packing, scenario.bars);
+  sort_along_morton_curve(s.particles, s.geometry.lo, s.geometry.hi);
   s.concrete_count = s.particles.size();
   s.steel.first = s.concrete_count;
   Index body = s.concrete_count;

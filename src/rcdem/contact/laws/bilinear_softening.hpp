@@ -8,6 +8,7 @@
 // exactly; likewise G_f,s A_c in shear at fn = 0. Inside the envelope (S5) the point is elastic
 // with kn, ks, so unloading keeps slope kn and reloading meets the envelope where it left it.
 #include <algorithm>
+#include <cmath>
 
 #include "rcdem/contact/laws/local_point_state.hpp"
 
@@ -46,11 +47,19 @@ struct BilinearSoftening {
     const Real fn_trial = fn_old + c.kn * dun;
     const Vec3 fs_trial = fs_old - c.ks * dus;
 
+    // The elastic path, which most points take most steps, needs no square root and no division:
+    // limits are compared as kn u_max > F_max and on squared lengths.
     s.un_max = std::max(s.un_max, s.un);
-    s.us_max = std::max(s.us_max, s.us.norm());
-    const Real d_n = softening_damage(s.un_max, c.fn_max / c.kn, u_nu());  // (S3)
-    const Real d_s = softening_damage(s.us_max, c.c_max / c.ks, u_su());   // (S3)
-    const Real d = std::max(s.damage, std::min<Real>(1, d_n + d_s));       // (S4)
+    s.us_max_sq = std::max(s.us_max_sq, s.us.squaredNorm());
+    Real d = s.damage;
+    const bool past_n = c.kn * s.un_max > c.fn_max;
+    const bool past_s = c.ks * c.ks * s.us_max_sq > c.c_max * c.c_max;
+    if (past_n || past_s) {
+      const Real d_n = past_n ? softening_damage(s.un_max, c.fn_max / c.kn, u_nu()) : 0;  // (S3)
+      const Real d_s =
+          past_s ? softening_damage(std::sqrt(s.us_max_sq), c.c_max / c.ks, u_su()) : 0;  // (S3)
+      d = std::max(d, std::min<Real>(1, d_n + d_s));                                       // (S4)
+    }
 
     LawResult r;
     r.damage_grew = d > s.damage;
@@ -62,10 +71,10 @@ struct BilinearSoftening {
     const bool normal_capped = fn_trial > fn_cap;
     s.fn = normal_capped ? fn_cap : fn_trial;
     const Real friction = mu_c * std::max<Real>(0, -s.fn);
-    const Real fs_cap = (1 - d) * c.c_max + friction;
-    const Real fs_trial_norm = fs_trial.norm();
-    const bool shear_capped = fs_trial_norm > fs_cap;
-    s.fs = shear_capped ? Vec3((fs_cap / fs_trial_norm) * fs_trial) : fs_trial;
+    const Real fs_cap = (1 - d) * c.c_max + friction;  // >= 0
+    const Real fs_trial_sq = fs_trial.squaredNorm();
+    const bool shear_capped = fs_trial_sq > fs_cap * fs_cap;
+    s.fs = shear_capped ? Vec3((fs_cap / std::sqrt(fs_trial_sq)) * fs_trial) : fs_trial;
 
     // Dissipation = work - dE, with E = fn^2/2kn + |fs|^2/2ks and the work of the relative
     // displacement fn dun - fs . dus (fs resists dus). Since dun = (fn_trial - fn_old)/kn, this is
@@ -82,7 +91,7 @@ struct BilinearSoftening {
       r.dissipated += f_eff * (fn_trial - s.fn) / c.kn;
     }
     if (shear_capped) {
-      const Vec3 f_eff = fs_old.norm() > s.fs.norm() ? Vec3(0.5 * (fs_old + s.fs)) : s.fs;
+      const Vec3 f_eff = fs_old.squaredNorm() > s.fs.squaredNorm() ? Vec3(0.5 * (fs_old + s.fs)) : s.fs;
       // max(0, .): only a step reversing the slip by more than the elastic range, impossible at a
       // stable time step, could make the trapezoid negative here.
       const Real dissipated_shear = std::max<Real>(0, f_eff.dot(fs_trial - s.fs) / c.ks);

@@ -15,7 +15,7 @@ struct Elastic {
     s.un += dun;
     s.us += dus;
     s.un_max = std::max(s.un_max, s.un);
-    s.us_max = std::max(s.us_max, s.us.norm());
+    s.us_max_sq = std::max(s.us_max_sq, s.us.squaredNorm());
     s.fn += c.kn * dun;  // (1), tension positive
     s.fs -= c.ks * dus;  // (2), resists B's slip relative to A
     return {};

@@ -14,7 +14,7 @@ struct LocalPointState {
   Real un = 0;             // accumulated normal displacement [m], opening positive
   Vec3 us = Vec3::Zero();  // accumulated shear displacement [m], in the contact plane
   Real un_max = 0;         // historical maximum of un (>= 0), drives D_n (S3)
-  Real us_max = 0;         // historical maximum of |us|, drives D_s (S3)
+  Real us_max_sq = 0;      // historical maximum of |us|^2 (squared: no root per step), drives D_s (S3)
   Real damage = 0;         // D in [0, 1], never decreasing (S4)
 };
 
