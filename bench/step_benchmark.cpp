@@ -44,20 +44,21 @@ using rcdem::Vec3;
 // Per local point (concrete network), contact loop (contact_loop.hpp):
 //   point_position0  Vec3                  read             24
 //   constants        LocalPointConstants   read             32
-//   point (state)    LocalPointState       read + write     2 x 88
-//                                                           = 232
+//   point (state)    LocalPointArrays: 9 Real (fn, fs1, fs2, un, us1, us2, un_max, us_max_sq,
+//                    damage)               read + write     2 x 72
+//                                                           = 200
 // Per contact (concrete network):
 //   contact loop: particle_a, particle_b   Index x 2 read     16
 //                 point_begin              Index read          8
-//                 normal                   Vec3 read + write  48
+//                 normal, tangent          2 Vec3 read + write  96
 //                 force_b, torque_b, torque_a  3 Vec3 write   72
-//                 strain_energy, dissipated_damage, dissipated_friction  3 Real write  24
+//                 dissipated_damage, dissipated_friction  2 Real write  16
 //   gather (Simulation::gather_forces, BodyContacts CSR):
 //                 entry                    Index x 2 (one per side) read  16
 //                 force_b, torque_b, torque_a  3 Vec3 read    72  (force_b is read by both
 //                                          sides; counted once, the second visit is cached)
-//   energy ledger: the 3 energies          3 Real read        24
-//                                                           = 280
+//   energy ledger: the 2 dissipations      2 Real read        16
+//                                                           = 312
 // Per body (all bodies: concrete spheres and the bars' cylinders):
 //   contact loop: position, position0, angular_velocity  3 Vec3 read  72; orientation Quat read 32
 //   gather:       begin Index read 8; force, torque  2 Vec3 write  48
@@ -75,12 +76,12 @@ using rcdem::Vec3;
 //   reaction sum: plate 4, force 24, active 1;  gather: particle 8, force + torque 48, the body's
 //   force + torque r+w 96;  energy ledger: strain + friction 16                 = 587
 // Per interface contact (bars, SPEC 8; each one's particle A is a distinct concrete particle):
-//   contact loop: particle_a/b 16, point_begin 8, anchor0 Vec3 r 24, normal r+w 48,
-//                 force_b/torque_b/torque_a w 72, 3 energies w 24, body A position, position0,
+//   contact loop: particle_a/b 16, point_begin 8, anchor0 Vec3 r 24, normal + tangent r+w 96,
+//                 force_b/torque_b/torque_a w 72, 2 dissipations w 16, body A position, position0,
 //                 angular_velocity, orientation r 104 (B is a cylinder: few, cached)
 //   gather (serial): particle_a/b 16, force_b/torque_b/torque_a r 72, A's force + torque r+w 96
-//   energy ledger: 3 energies r 24                                               = 504
-//   and per interface local point the same 232 as a concrete one.
+//   energy ledger: 2 dissipations r 16                                           = 536
+//   and per interface local point the same 200 as a concrete one.
 // Per interaction node: node loop: NodeRef r, InteractionNode r, NodeState r+w, NodeForces w,
 //   A's and B's position + orientation r 112; gather: NodeRef r, NodeForces r, A's and B's
 //   force + torque r+w 192; energy: InteractionNode r, NodeState r, NodeForces.dissipated r 8.
@@ -105,13 +106,14 @@ struct ByteCount {
 
 ByteCount count_bytes(const rcdem::Simulation& sim) {
   constexpr double V = sizeof(Vec3), Q = sizeof(Quat), R = sizeof(Real), I = sizeof(Index);
-  constexpr double LPS = sizeof(rcdem::LocalPointState);
+  constexpr double LPS = sizeof(rcdem::LocalPointState);  // plate contacts' state
+  constexpr double PTS = 9 * R;                            // LocalPointArrays, per point
   constexpr double LPC = sizeof(rcdem::LocalPointConstants);
   ByteCount b;
-  b.per_local_point = V + LPC + 2 * LPS;
-  b.per_contact = (2 * I + I + 2 * V + 3 * V + 3 * R)  // contact loop
-                  + (2 * I + 3 * V)                    // gather: CSR entries, force and torques
-                  + 3 * R;                             // energy ledger
+  b.per_local_point = V + LPC + 2 * PTS;
+  b.per_contact = (2 * I + I + 2 * 2 * V + 3 * V + 2 * R)  // contact loop
+                  + (2 * I + 3 * V)  // gather: CSR entries, force and torques
+                  + 2 * R;           // energy ledger
   b.per_body = (3 * V + Q)                                                    // contact loop
                + (I + 2 * V)                                                  // gather
                + (4 * 2 * V + 2 * Q + Q + 3 * V + 2 * R + sizeof(std::int64_t) + 2 * R +
@@ -123,9 +125,9 @@ ByteCount count_bytes(const rcdem::Simulation& sim) {
                         + (sizeof(int) + V + sizeof(std::uint8_t))  // reaction sum
                         + (I + 2 * V + 2 * 2 * V)                   // gather
                         + 2 * R;                                    // energy ledger
-  b.per_interface_contact = (2 * I + I + V + 2 * V + 3 * V + 3 * R + 3 * V + Q)  // contact loop
-                            + (2 * I + 3 * V + 2 * 2 * V)                        // gather
-                            + 3 * R;                                             // energy
+  b.per_interface_contact = (2 * I + I + V + 2 * 2 * V + 3 * V + 2 * R + 3 * V + Q)  // loop
+                            + (2 * I + 3 * V + 2 * 2 * V)                            // gather
+                            + 2 * R;                                                 // energy
   using NodeRef = rcdem::Simulation::NodeRef;
   constexpr double NR = sizeof(NodeRef), NC = sizeof(rcdem::InteractionNode),
                    NS = sizeof(rcdem::NodeState), NF = sizeof(rcdem::NodeForces);

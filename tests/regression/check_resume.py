@@ -227,8 +227,8 @@ try:
               and h["writer"].startswith("rcdem "),
               f"the checkpoint reads as documented (format 2, {len(h['data'])} bytes, "
               f"{len(h['sections'])} sections, CRC-32 checked by zlib)")
-        need = {"bodies": 22, "bodies.step": 3, "contacts": 17, "contacts.points": 11,
-                "interface.0": 17, "interface.0.points": 11, "nodes": 35, "plates": 8,
+        need = {"bodies": 22, "bodies.step": 3, "contacts": 17, "contacts.points": 9,
+                "interface.0": 17, "interface.0.points": 9, "nodes": 35, "plates": 8,
                 "plate_contacts": 20, "pulled_bars": 7, "solver": 11,
                 "history": len(open(os.path.join(ref, "history.csv")).readline().split(",")),
                 "cracks": 7, "run": 8, "snapshots.particles": 1}

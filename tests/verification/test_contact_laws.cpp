@@ -404,7 +404,7 @@ TEST(LawKind, WithLawPassesTheConcreteLawType) {
   for (const LawKind kind : {LawKind::BilinearSoftening, LawKind::Elastic}) {
     LocalPointState s;
     with_law(kind, bl, el,
-             [&](const auto& law) { law.update(c, s, 10 * c.fn_max / c.kn, Vec3::Zero()); });
+             [&](const auto& law) { law.update(c, s, 10 * c.fn_max / c.kn, Vec3(Vec3::Zero())); });
     if (kind == LawKind::Elastic) {
       EXPECT_NEAR(s.fn, 10 * c.fn_max, 1e-9 * c.fn_max);
     } else {

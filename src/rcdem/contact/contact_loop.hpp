@@ -10,10 +10,84 @@
 
 namespace rcdem {
 
+// What one local point adds to its contact's sums, in the contact's frame.
+struct PointSums {
+  Real f_n = 0, f_1 = 0, f_2 = 0;  // force on B
+  Real m_n = 0, m_1 = 0, m_2 = 0;  // its moment about A's centre
+  Real damage = 0, friction = 0;   // dissipated this step
+};
+
+// One local point of a contact, in the contact's frame (see evaluate_contacts): advances its
+// history by the law and returns what it adds to the contact's sums. (A full 8-lane pass with
+// idle lanes masked, instead of the compiler's 4-lane pass and scalar remainder, was 6% slower.)
+template <typename Law>
+struct PointUpdate {
+  const Law& law;
+  const Vec3* p0;
+  const LocalPointConstants* constants;
+  Real *fn, *fs1, *fs2, *un, *us1, *us2, *un_max, *us_max_sq, *damage_of;
+  Vec3 xa0;                  // A's centre at t = 0
+  Vec3 disp0;                // E^T u0
+  Eigen::Matrix3d disp;      // E^T (R_B - R_A)
+  Vec3 arm0;                 // E^T u0 / 2
+  Eigen::Matrix3d arm;       // E^T (R_A + R_B) / 2
+
+  [[gnu::always_inline]] PointSums operator()(Index m) const {
+    const Real rx = p0[m].x() - xa0.x(), ry = p0[m].y() - xa0.y(), rz = p0[m].z() - xa0.z();
+    // Total displacement in the frame: opening along n, shear along t1, t2.
+    const Real u_n = disp0.x() + disp(0, 0) * rx + disp(0, 1) * ry + disp(0, 2) * rz;
+    const Real u_1 = disp0.y() + disp(1, 0) * rx + disp(1, 1) * ry + disp(1, 2) * rz;
+    const Real u_2 = disp0.z() + disp(2, 0) * rx + disp(2, 1) * ry + disp(2, 2) * rz;
+    PlanePointState s;
+    s.fn = fn[m];
+    s.fs = {fs1[m], fs2[m]};
+    s.un = un[m];
+    s.us = {us1[m], us2[m]};
+    s.un_max = un_max[m];
+    s.us_max_sq = us_max_sq[m];
+    s.damage = damage_of[m];
+    const LawResult res =
+        law.update(constants[m], s, u_n - s.un, PlaneVec{u_1 - s.us.x, u_2 - s.us.y});  // (1)-(2)
+    fn[m] = s.fn;
+    fs1[m] = s.fs.x;
+    fs2[m] = s.fs.y;
+    un[m] = s.un;
+    us1[m] = s.us.x;
+    us2[m] = s.us.y;
+    un_max[m] = s.un_max;
+    us_max_sq[m] = s.us_max_sq;
+    damage_of[m] = s.damage;
+    PointSums out;
+    // On B; tension (fn > 0) pulls B back towards A.
+    out.f_n = -s.fn;
+    out.f_1 = s.fs.x;
+    out.f_2 = s.fs.y;
+    out.damage = res.dissipated - res.dissipated_friction;
+    out.friction = res.dissipated_friction;
+    const Real a_n = arm0.x() + arm(0, 0) * rx + arm(0, 1) * ry + arm(0, 2) * rz;
+    const Real a_1 = arm0.y() + arm(1, 0) * rx + arm(1, 1) * ry + arm(1, 2) * rz;
+    const Real a_2 = arm0.z() + arm(2, 0) * rx + arm(2, 1) * ry + arm(2, 2) * rz;
+    out.m_n = a_1 * out.f_2 - a_2 * out.f_1;
+    out.m_1 = a_2 * out.f_n - a_n * out.f_2;
+    out.m_2 = a_n * out.f_1 - a_1 * out.f_n;
+    return out;
+  }
+};
+
 // With `anchor0` (steel-concrete interface contacts, SPEC 8), B is a cylinder and the normal is the
 // component of (x_A - anchor) perpendicular to the cylinder's current axis, pointing from A to the
 // axis, anchor being the interface sphere's centre carried by the cylinder: the sphere
 // discretisation then adds no artificial interlock along the bar.
+//
+// Everything per point is done in the contact's frame E = [n t1 t2] (right-handed: t2 = n x t1),
+// with matrices formed once per contact, so that a point costs two 3x3 products, the law and a
+// cross product, all on plain scalars the compiler runs in SIMD lanes over the contact's points:
+//   relative displacement (SPEC 4, contact_kinematics.hpp): u_J = u0 + (R_B - R_A) r,
+//     r = p_J0 - x_A0, so in the frame E^T u_J = E^T u0 + (E^T (R_B - R_A)) r;
+//   force on B in the frame: phi = (-fn, fs1, fs2), the contact's force E sum(phi);
+//   the point's position relative to A's centre, x_A + R_A r + u_J / 2 - x_A, in the frame
+//     rho = E^T u0 / 2 + (E^T (R_A + (R_B - R_A) / 2)) r, and the moment about A
+//     sum (E rho) x (E phi) = E sum(rho x phi) (E is a rotation).
 template <typename Law>
 void evaluate_contacts(const Law& law, const ContactNetwork& net, const Bodies& bodies,
                        ContactState& cs, Real dt, const Vec3* anchor0 = nullptr) {
@@ -21,6 +95,18 @@ void evaluate_contacts(const Law& law, const ContactNetwork& net, const Bodies& 
   const Vec3* x0 = bodies.position0.data();
   const Vec3* w = bodies.angular_velocity.data();
   const Quat* q = bodies.orientation.data();
+  const Vec3* p0 = net.point_position0.data();
+  const LocalPointConstants* constants = net.constants.data();
+  LocalPointArrays& pt = cs.point;
+  Real* const fn = pt.fn.data();
+  Real* const fs1 = pt.fs1.data();
+  Real* const fs2 = pt.fs2.data();
+  Real* const un = pt.un.data();
+  Real* const us1 = pt.us1.data();
+  Real* const us2 = pt.us2.data();
+  Real* const un_max = pt.un_max.data();
+  Real* const us_max_sq = pt.us_max_sq.data();
+  Real* const damage_of = pt.damage.data();
   parallel_for(net.contact_count(), [&](Index c) {
     const Index a = net.particle_a[c];
     const Index b = net.particle_b[c];
@@ -40,30 +126,38 @@ void evaluate_contacts(const Law& law, const ContactNetwork& net, const Bodies& 
     if (!(t1.squaredNorm() > 0.5)) t1 = any_perpendicular(n);  // only after a turn near 90 deg
     cs.tangent[c] = t1;
     const Vec3 t2 = n.cross(t1);
+    Eigen::Matrix3d frame_t;  // E^T: rows n, t1, t2
+    frame_t.row(0) = n.transpose();
+    frame_t.row(1) = t1.transpose();
+    frame_t.row(2) = t2.transpose();
     const Eigen::Matrix3d ra = q[a].toRotationMatrix();
     const Eigen::Matrix3d rb = q[b].toRotationMatrix();
-    // contact_kinematics.hpp: u_J is affine in r = p_J0 - x_A0, u_J = u0 + (R_B - R_A) r, and the
-    // point sits at x_A + R_A r + u_J / 2. Built from small differences only, so it keeps full
-    // precision far from the origin.
     const Vec3 dx = x[b] - x[a];
-    const Vec3 u0 = dx - rb * (x0[b] - x0[a]);
-    const Eigen::Matrix3d dr = rb - ra;
-    Vec3 f = Vec3::Zero(), moment_a = Vec3::Zero();
+    const Vec3 u0 = dx - rb * (x0[b] - x0[a]);  // small differences only: full precision anywhere
+    const Eigen::Matrix3d disp = frame_t * (rb - ra);
+    const Vec3 disp0 = frame_t * u0;
+    const Eigen::Matrix3d arm = frame_t * (0.5 * (ra + rb));
+    const Vec3 arm0 = 0.5 * disp0;
+    const Vec3 xa0 = x0[a];
+    Real phi_n = 0.0, phi_1 = 0.0, phi_2 = 0.0, mom_n = 0.0, mom_1 = 0.0, mom_2 = 0.0;
     Real damage = 0.0, friction = 0.0;
-    for (Index m = net.point_begin[c]; m < net.point_begin[c + 1]; ++m) {
-      const Vec3 r = net.point_position0[m] - x0[a];
-      const Vec3 u = u0 + dr * r;
-      LocalPointState& s = cs.point[m];
-      const LocalPointConstants& pc = net.constants[m];
-      const Vec3 us(u.dot(t1), u.dot(t2), 0.0);  // total shear displacement, in the frame
-      const LawResult res = law.update(pc, s, u.dot(n) - s.un, us - s.us);  // (1)-(2), SPEC 4-5
-      // On B; tension (fn > 0) pulls B back towards A.
-      const Vec3 fp = -s.fn * n + s.fs.x() * t1 + s.fs.y() * t2;
-      f += fp;
-      moment_a += (ra * r + 0.5 * u).cross(fp);
-      damage += res.dissipated - res.dissipated_friction;
-      friction += res.dissipated_friction;
+    const PointUpdate<Law> point{law, p0, constants, fn, fs1, fs2, un, us1, us2, un_max,
+                                 us_max_sq, damage_of, xa0, disp0, disp, arm0, arm};
+    const Index begin = net.point_begin[c], end = net.point_begin[c + 1];
+#pragma omp simd reduction(+ : phi_n, phi_1, phi_2, mom_n, mom_1, mom_2, damage, friction)
+    for (Index m = begin; m < end; ++m) {
+      const PointSums o = point(m);
+      phi_n += o.f_n;
+      phi_1 += o.f_1;
+      phi_2 += o.f_2;
+      mom_n += o.m_n;
+      mom_1 += o.m_1;
+      mom_2 += o.m_2;
+      damage += o.damage;
+      friction += o.friction;
     }
+    const Vec3 f = phi_n * n + phi_1 * t1 + phi_2 * t2;
+    const Vec3 moment_a = mom_n * n + mom_1 * t1 + mom_2 * t2;
     cs.force_b[c] = f;
     cs.torque_b[c] = moment_a - dx.cross(f);
     cs.torque_a[c] = -moment_a;

@@ -14,7 +14,7 @@ Vec3 any_perpendicular(const Vec3& n) {
 void ContactState::init(const ContactNetwork& net, const std::vector<Vec3>& x,
                         const std::vector<Vec3>* anchor0, const std::vector<Vec3>* axis0) {
   const auto nc = static_cast<std::size_t>(net.contact_count());
-  point.assign(static_cast<std::size_t>(net.point_count()), LocalPointState{});
+  point.assign(static_cast<std::size_t>(net.point_count()));
   normal.resize(nc);
   for (std::size_t c = 0; c < nc; ++c) {
     if (anchor0) {
@@ -37,7 +37,7 @@ void ContactState::init(const ContactNetwork& net, const std::vector<Vec3>& x,
 Real ContactState::strain_energy(const ContactNetwork& net, Index c) const {
   Real e = 0.0;
   for (Index m = net.point_begin[c]; m < net.point_begin[c + 1]; ++m) {
-    const LocalPointState& s = point[m];
+    const LocalPointState s = point[m];
     const LocalPointConstants& k = net.constants[m];
     e += 0.5 * s.fn * s.fn / k.kn + 0.5 * s.fs.squaredNorm() / k.ks;
   }

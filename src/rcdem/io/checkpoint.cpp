@@ -352,8 +352,14 @@ struct CheckpointAccess {
       r.f(c.dissipated_damage[i]);
       r.f(c.dissipated_friction[i]);
     });
-    ar.table(name + ".points", c.point.size(), 11,
-             [&](auto& r, std::size_t m) { point(r, c.point[m]); });
+    ar.table(name + ".points", static_cast<std::size_t>(c.point.size()), 9,
+             [&](auto& r, std::size_t i) {
+               const auto m = static_cast<Index>(i);
+               auto& p = c.point;
+               for (auto* a : {&p.fn, &p.fs1, &p.fs2, &p.un, &p.us1, &p.us2, &p.un_max,
+                               &p.us_max_sq, &p.damage})
+                 r.f((*a)[m]);
+             });
   }
 
   template <typename Ar, typename S>

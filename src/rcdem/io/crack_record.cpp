@@ -8,13 +8,13 @@
 namespace rcdem::io {
 
 CrackRecord::CrackRecord(const Simulation& sim)
-    : broken_(sim.contacts().point.size(), std::uint8_t{0}) {}
+    : broken_(static_cast<std::size_t>(sim.contacts().point.size()), std::uint8_t{0}) {}
 
 void CrackRecord::update(const Simulation& sim, Real deflection, Real load) {
   const auto& pts = sim.contacts().point;
   const ContactNetwork& net = sim.specimen().contacts;
-  for (std::size_t m = 0; m < pts.size(); ++m) {
-    if (broken_[m] || pts[m].damage < 1.0) continue;
+  for (Index m = 0; m < pts.size(); ++m) {
+    if (broken_[m] || pts.damage[m] < 1.0) continue;
     broken_[m] = 1;
     rows_.push_back({net.point_position0[m], net.point_area[m], sim.steps(), deflection, load});
   }

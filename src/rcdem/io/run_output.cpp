@@ -18,7 +18,7 @@ std::vector<Real> particle_damage(const Simulation& sim) {
   for (Index c = 0; c < net.contact_count(); ++c) {
     Real d = 0.0, a = 0.0;
     for (Index m = net.point_begin[c]; m < net.point_begin[c + 1]; ++m) {
-      d += pts[m].damage * net.point_area[m];
+      d += pts.damage[m] * net.point_area[m];
       a += net.point_area[m];
     }
     for (Index i : {net.particle_a[c], net.particle_b[c]}) {
@@ -155,9 +155,9 @@ void SnapshotWriter::write(const Simulation& sim) {
     Real d = 0.0, a = 0.0;
     bool all_broken = true;
     for (Index m = net.point_begin[c]; m < net.point_begin[c + 1]; ++m) {
-      d += pts[m].damage * net.point_area[m];
+      d += pts.damage[m] * net.point_area[m];
       a += net.point_area[m];
-      all_broken &= pts[m].damage >= 1.0;
+      all_broken &= pts.damage[m] >= 1.0;
       if (m == net.point_begin[c]) continue;  // the centroid is not a polygon vertex
       const PointKinematics k =
           point_kinematics(net.point_position0[m], b.position[ia], b.position0[ia], ra,

@@ -395,14 +395,14 @@ Energy Simulation::energy() const {
 
 Index Simulation::damaged_points() const {
   Index n = 0;
-  for (const auto& s : contacts_.point) n += (s.damage > 0.0 && s.damage < 1.0);
+  for (Real d : contacts_.point.damage) n += (d > 0.0 && d < 1.0);
   return n;
 }
 
 Index Simulation::broken_interface_points() const {
   Index n = 0;
   for (const auto& st : interface_states_)
-    for (const auto& p : st.point) n += (p.damage >= 1.0);
+    for (Real d : st.point.damage) n += (d >= 1.0);
   return n;
 }
 
@@ -420,7 +420,7 @@ Real Simulation::max_axial_force() const {
 
 Index Simulation::broken_points() const {
   Index n = 0;
-  for (const auto& s : contacts_.point) n += (s.damage >= 1.0);
+  for (Real d : contacts_.point.damage) n += (d >= 1.0);
   return n;
 }
 

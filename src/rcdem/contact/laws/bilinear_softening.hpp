@@ -37,15 +37,17 @@ struct BilinearSoftening {
   // Advances the point by the relative displacement increments (SPEC 4): dun along n (opening
   // positive) and dus in the current contact plane. The caller has already rotated s.fs and s.us
   // into that plane. Requires c.kn > 0 and c.ks > 0.
-  [[gnu::always_inline]] LawResult update(const LocalPointConstants& c, LocalPointState& s,
-                                          Real dun, const Vec3& dus) const {
+  // V: Vec3, or PlaneVec (frame components) in the contact loop.
+  template <typename V>
+  [[gnu::always_inline]] LawResult update(const LocalPointConstants& c, BasicPointState<V>& s,
+                                          Real dun, const V& dus) const {
     const Real fn_old = s.fn;
-    const Vec3 fs_old = s.fs;
+    const V fs_old = s.fs;
     s.un += dun;
     s.us += dus;
     // (1)-(2) in tension-positive form: fs resists the slip of B relative to A.
     const Real fn_trial = fn_old + c.kn * dun;
-    const Vec3 fs_trial = fs_old - c.ks * dus;
+    const V fs_trial = fs_old - c.ks * dus;
 
     // The elastic path, which most points take most steps, needs no square root and no division:
     // limits are compared as kn u_max > F_max and on squared lengths.
@@ -74,7 +76,7 @@ struct BilinearSoftening {
     const Real fs_cap = (1 - d) * c.c_max + friction;  // >= 0
     const Real fs_trial_sq = fs_trial.squaredNorm();
     const bool shear_capped = fs_trial_sq > fs_cap * fs_cap;
-    s.fs = shear_capped ? Vec3((fs_cap / std::sqrt(fs_trial_sq)) * fs_trial) : fs_trial;
+    s.fs = shear_capped ? V((fs_cap / std::sqrt(fs_trial_sq)) * fs_trial) : fs_trial;
 
     // Dissipation = work - dE, with E = fn^2/2kn + |fs|^2/2ks and the work of the relative
     // displacement fn dun - fs . dus (fs resists dus). Since dun = (fn_trial - fn_old)/kn, this is
@@ -91,7 +93,7 @@ struct BilinearSoftening {
       r.dissipated += f_eff * (fn_trial - s.fn) / c.kn;
     }
     if (shear_capped) {
-      const Vec3 f_eff = fs_old.squaredNorm() > s.fs.squaredNorm() ? Vec3(0.5 * (fs_old + s.fs)) : s.fs;
+      const V f_eff = fs_old.squaredNorm() > s.fs.squaredNorm() ? V(0.5 * (fs_old + s.fs)) : s.fs;
       // max(0, .): only a step reversing the slip by more than the elastic range, impossible at a
       // stable time step, could make the trapezoid negative here.
       const Real dissipated_shear = std::max<Real>(0, f_eff.dot(fs_trial - s.fs) / c.ks);

@@ -10,8 +10,9 @@ namespace rcdem {
 
 struct Elastic {
   // Same contract as BilinearSoftening::update; never dissipates.
-  [[gnu::always_inline]] LawResult update(const LocalPointConstants& c, LocalPointState& s,
-                                          Real dun, const Vec3& dus) const {
+  template <typename V>
+  [[gnu::always_inline]] LawResult update(const LocalPointConstants& c, BasicPointState<V>& s,
+                                          Real dun, const V& dus) const {
     s.un += dun;
     s.us += dus;
     s.un_max = std::max(s.un_max, s.un);

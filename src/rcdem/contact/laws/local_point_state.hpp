@@ -5,18 +5,44 @@
 
 namespace rcdem {
 
+// A vector in the contact plane as its components along the frame's axes (t1, t2): the form the
+// contact loop keeps, two numbers instead of three and plain scalars a vectorising compiler can
+// put in SIMD lanes. The laws are written once for it and for Vec3.
+struct PlaneVec {
+  Real x = 0, y = 0;
+  static PlaneVec Zero() { return {}; }
+  Real squaredNorm() const { return x * x + y * y; }
+  Real dot(const PlaneVec& b) const { return x * b.x + y * b.y; }
+  PlaneVec& operator+=(const PlaneVec& b) {
+    x += b.x;
+    y += b.y;
+    return *this;
+  }
+  PlaneVec& operator-=(const PlaneVec& b) {
+    x -= b.x;
+    y -= b.y;
+    return *this;
+  }
+  friend PlaneVec operator+(PlaneVec a, const PlaneVec& b) { return a += b; }
+  friend PlaneVec operator-(PlaneVec a, const PlaneVec& b) { return a -= b; }
+  friend PlaneVec operator*(Real s, const PlaneVec& a) { return {s * a.x, s * a.y}; }
+};
+
 // History of one local point, SI units. Tension-positive (SPEC 1): un > 0 is opening, fn > 0 is
 // tension. The force on particle B is (-fn n + fs) and on A its opposite, so an opening pulls B
-// back and fs opposes B's slip relative to A.
-struct LocalPointState {
-  Real fn = 0;             // normal force [N], tension positive
-  Vec3 fs = Vec3::Zero();  // shear force [N], in the contact plane
-  Real un = 0;             // accumulated normal displacement [m], opening positive
-  Vec3 us = Vec3::Zero();  // accumulated shear displacement [m], in the contact plane
-  Real un_max = 0;         // historical maximum of un (>= 0), drives D_n (S3)
-  Real us_max_sq = 0;      // historical maximum of |us|^2 (squared: no root per step), drives D_s (S3)
-  Real damage = 0;         // D in [0, 1], never decreasing (S4)
+// back and fs opposes B's slip relative to A. V: Vec3, or PlaneVec in the contact loop.
+template <typename V>
+struct BasicPointState {
+  Real fn = 0;           // normal force [N], tension positive
+  V fs = V::Zero();      // shear force [N], in the contact plane
+  Real un = 0;           // accumulated normal displacement [m], opening positive
+  V us = V::Zero();      // accumulated shear displacement [m], in the contact plane
+  Real un_max = 0;       // historical maximum of un (>= 0), drives D_n (S3)
+  Real us_max_sq = 0;    // historical maximum of |us|^2 (squared: no root per step), drives D_s (S3)
+  Real damage = 0;       // D in [0, 1], never decreasing (S4)
 };
+using LocalPointState = BasicPointState<Vec3>;
+using PlanePointState = BasicPointState<PlaneVec>;
 
 // Per-point constants: stiffness (3)-(4) and strength (5)-(6). The law derives its elastic limits
 // u_n0 = fn_max / kn and u_s0 = c_max / ks from them; kn and ks must be > 0.
