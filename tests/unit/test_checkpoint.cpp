@@ -267,6 +267,11 @@ TEST(Checkpoint, DamagedFilesAreRejectedWithTheReason) {
   std::string newer = bytes;
   newer[8] = static_cast<char>(io::kCheckpointVersion + 1);
   EXPECT_NE(restore_msg(newer).find(fmt::format("format version {} is newer", io::kCheckpointVersion + 1)), std::string::npos);
+  std::string older = bytes;
+  older[8] = static_cast<char>(io::kCheckpointVersion - 1);
+  EXPECT_NE(restore_msg(older).find(fmt::format("format version {} is older",
+                                                io::kCheckpointVersion - 1)),
+            std::string::npos);
   EXPECT_NE(restore_msg(bytes + "x").find("data after the end"), std::string::npos);
   // Another scenario's inputs, another specimen.
   write_file(dir.path() / "ok.rcp", bytes);

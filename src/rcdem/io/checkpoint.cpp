@@ -653,7 +653,11 @@ Parsed parse(const fs::path& file) {
                      ? fmt::format("format version {} is newer than this rcdem reads ({}); "
                                    "resume it with the rcdem that wrote it",
                                    h.version, kCheckpointVersion)
-                     : fmt::format("unknown format version {}", h.version)};
+                     : h.version >= 1
+                         ? fmt::format("format version {} is older than this rcdem reads ({}); "
+                                       "resume it with the rcdem that wrote it",
+                                       h.version, kCheckpointVersion)
+                         : fmt::format("unknown format version {}", h.version)};
   h.file_size = load_le64(u + 16);
   if (d.size() < h.file_size)
     throw Reject{fmt::format("truncated: {} of {} bytes", d.size(), h.file_size)};

@@ -87,6 +87,7 @@ Simulation::Simulation(const Scenario& sc, Specimen specimen)
   body_damping_work_.assign(n, 0.0);
   body_kinetic_.assign(n, 0.0);
   body_jumped_.assign(n, 0);
+  rotation_.assign(n, Eigen::Matrix3d::Identity());
   compute_stable_time_step();
   dt_ = sc.solver.dt_safety * stable_dt_;
   if (sc.solver.time_step > 0.0) {
@@ -185,18 +186,22 @@ const Plate* Simulation::find_plate(const std::string& name) const {
 void Simulation::step() {
   // 1. Contacts at the current positions (the law picked once for the whole loop).
   ContactNetwork& net = specimen_.contacts;
+  parallel_for(bodies_.size(),
+               [&](Index i) { rotation_[i] = bodies_.orientation[i].toRotationMatrix(); });
+  const Eigen::Matrix3d* rot = rotation_.data();
   if (law_kind_ == ConcreteLaw::BilinearSoftening)
-    evaluate_contacts(bilinear_, net, bodies_, contacts_, dt_);
+    evaluate_contacts(bilinear_, net, bodies_, contacts_, dt_, nullptr, rot);
   else
-    evaluate_contacts(elastic_, net, bodies_, contacts_, dt_);
+    evaluate_contacts(elastic_, net, bodies_, contacts_, dt_, nullptr, rot);
   // Steel-concrete interfaces, bar by bar with its law; interaction nodes.
   for (std::size_t k = 0; k < interface_states_.size(); ++k) {
     const InterfaceContacts& ic = specimen_.interfaces[k];
     if (interface_law_[k] == InterfaceLaw::EL)
-      evaluate_contacts(elastic_, ic.net, bodies_, interface_states_[k], dt_, ic.anchor0.data());
+      evaluate_contacts(elastic_, ic.net, bodies_, interface_states_[k], dt_, ic.anchor0.data(),
+                        rot);
     else
       evaluate_contacts(interface_bl_[k], ic.net, bodies_, interface_states_[k], dt_,
-                        ic.anchor0.data());
+                        ic.anchor0.data(), rot);
   }
   parallel_for(static_cast<Index>(nodes_.size()), [&](Index j) {
     const NodeRef& r = node_refs_[j];

@@ -127,6 +127,9 @@ class Simulation {
   std::vector<Real> plate_force_prev_, plate_displacement_prev_;
   std::vector<Real> body_damping_work_, body_kinetic_;
   std::vector<std::uint8_t> body_jumped_;
+  // Every body's orientation as a matrix, formed at the start of each step for the contact loops
+  // (derived from the orientations: not part of a checkpoint).
+  std::vector<Eigen::Matrix3d> rotation_;
 };
 
 }  // namespace rcdem
