@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "rcdem/calibration/calibrate.hpp"
+#include "rcdem/core/build_info.hpp"
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
 #include "rcdem/io/atomic_file.hpp"
@@ -245,7 +246,7 @@ int study(const std::string& name, fs::path scenarios, fs::path out, bool force,
 int main(int argc, char** argv) {
   CLI::App app{"rcdem: 3D rigid-particle model for reinforced-concrete fracture"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", std::string(RCDEM_VERSION) + " (" + RCDEM_GIT_HASH + ")");
+  app.set_version_flag("--version", std::string(rcdem::build_version()) + " (" + rcdem::build_git_hash() + ")");
   bool quiet = false;
   app.add_flag("-q,--quiet", quiet, "No progress or summary lines");
 

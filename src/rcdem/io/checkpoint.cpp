@@ -14,6 +14,7 @@
 #include <map>
 #include <type_traits>
 
+#include "rcdem/core/build_info.hpp"
 #include "rcdem/core/error.hpp"
 #include "rcdem/io/crack_record.hpp"
 #include "rcdem/io/run_output.hpp"
@@ -592,7 +593,7 @@ std::string encode_checkpoint(const CheckpointParts& parts, std::uint64_t scenar
   o.u64(specimen_fingerprint(sim));
   const std::size_t sections_at = o.buf.size();
   o.u32(0);  // the section count, set below
-  const std::string writer = fmt::format("rcdem {} ({})", RCDEM_VERSION, RCDEM_GIT_HASH);
+  const std::string writer = fmt::format("rcdem {} ({})", build_version(), build_git_hash());
   o.u32(static_cast<std::uint32_t>(writer.size()));
   o.bytes(writer.data(), writer.size());
   Saver saver(o);

@@ -21,6 +21,7 @@
 #include <omp.h>
 #endif
 
+#include "rcdem/core/build_info.hpp"
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
 #include "rcdem/io/atomic_file.hpp"
@@ -167,7 +168,7 @@ RunSummary run_scenario(const Scenario& sc, const fs::path& out, const RunOption
   }
   {
     auto& j = manifest.json();
-    const std::string version = RCDEM_VERSION, git = RCDEM_GIT_HASH;
+    const std::string version = build_version(), git = build_git_hash();
     if (!opt.resume) {
       j["manifest_version"] = 1;
       j["scenario"] = sc.source.string();
@@ -262,7 +263,7 @@ RunSummary run_scenario(const Scenario& sc, const fs::path& out, const RunOption
     if (opt.resume) {
       const io::RestoreReport rep = io::restore_latest_checkpoint(out, parts, inputs.hash);
       for (const auto& line : rep.rejected) fmt::print(stderr, "rcdem: warning: {}\n", line);
-      const std::string writer = fmt::format("rcdem {} ({})", RCDEM_VERSION, RCDEM_GIT_HASH);
+      const std::string writer = fmt::format("rcdem {} ({})", build_version(), build_git_hash());
       if (rep.header.writer != writer)
         fmt::print(stderr,
                    "rcdem: warning: {} was written by {}, this is {}: the rest of the run may "
