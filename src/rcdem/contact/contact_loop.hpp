@@ -25,12 +25,12 @@ struct PointUpdate {
   const Law& law;
   const Vec3* p0;
   const LocalPointConstants* constants;
-  Real *fn, *fs1, *fs2, *un, *us1, *us2, *un_max, *us_max_sq, *damage_of;
-  Vec3 xa0;                  // A's centre at t = 0
-  Vec3 disp0;                // E^T u0
-  Eigen::Matrix3d disp;      // E^T (R_B - R_A)
-  Vec3 arm0;                 // E^T u0 / 2
-  Eigen::Matrix3d arm;       // E^T (R_A + R_B) / 2
+  LocalPointPointers history;
+  Vec3 xa0;              // A's centre at t = 0
+  Vec3 disp0;            // E^T u0
+  Eigen::Matrix3d disp;  // E^T (R_B - R_A)
+  Vec3 arm0;             // E^T u0 / 2
+  Eigen::Matrix3d arm;   // E^T (R_A + R_B) / 2
 
   [[gnu::always_inline]] PointSums operator()(Index m) const {
     const Real rx = p0[m].x() - xa0.x(), ry = p0[m].y() - xa0.y(), rz = p0[m].z() - xa0.z();
@@ -38,25 +38,10 @@ struct PointUpdate {
     const Real u_n = disp0.x() + disp(0, 0) * rx + disp(0, 1) * ry + disp(0, 2) * rz;
     const Real u_1 = disp0.y() + disp(1, 0) * rx + disp(1, 1) * ry + disp(1, 2) * rz;
     const Real u_2 = disp0.z() + disp(2, 0) * rx + disp(2, 1) * ry + disp(2, 2) * rz;
-    PlanePointState s;
-    s.fn = fn[m];
-    s.fs = {fs1[m], fs2[m]};
-    s.un = un[m];
-    s.us = {us1[m], us2[m]};
-    s.un_max = un_max[m];
-    s.us_max_sq = us_max_sq[m];
-    s.damage = damage_of[m];
+    PlanePointState s = history.load(m);
     const LawResult res =
         law.update(constants[m], s, u_n - s.un, PlaneVec{u_1 - s.us.x, u_2 - s.us.y});  // (1)-(2)
-    fn[m] = s.fn;
-    fs1[m] = s.fs.x;
-    fs2[m] = s.fs.y;
-    un[m] = s.un;
-    us1[m] = s.us.x;
-    us2[m] = s.us.y;
-    un_max[m] = s.un_max;
-    us_max_sq[m] = s.us_max_sq;
-    damage_of[m] = s.damage;
+    history.store(m, s);
     PointSums out;
     // On B; tension (fn > 0) pulls B back towards A.
     out.f_n = -s.fn;
@@ -102,16 +87,7 @@ void evaluate_contacts(const Law& law, const ContactNetwork& net, const Bodies& 
   const Quat* q = bodies.orientation.data();
   const Vec3* p0 = net.point_position0.data();
   const LocalPointConstants* constants = net.constants.data();
-  LocalPointArrays& pt = cs.point;
-  Real* const fn = pt.fn.data();
-  Real* const fs1 = pt.fs1.data();
-  Real* const fs2 = pt.fs2.data();
-  Real* const un = pt.un.data();
-  Real* const us1 = pt.us1.data();
-  Real* const us2 = pt.us2.data();
-  Real* const un_max = pt.un_max.data();
-  Real* const us_max_sq = pt.us_max_sq.data();
-  Real* const damage_of = pt.damage.data();
+  const LocalPointPointers history = cs.point.pointers();
   parallel_for(net.contact_count(), [&](Index c) {
     const Index a = net.particle_a[c];
     const Index b = net.particle_b[c];
@@ -146,8 +122,7 @@ void evaluate_contacts(const Law& law, const ContactNetwork& net, const Bodies& 
     const Vec3 xa0 = x0[a];
     Real phi_n = 0.0, phi_1 = 0.0, phi_2 = 0.0, mom_n = 0.0, mom_1 = 0.0, mom_2 = 0.0;
     Real damage = 0.0, friction = 0.0;
-    const PointUpdate<Law> point{law, p0, constants, fn, fs1, fs2, un, us1, us2, un_max,
-                                 us_max_sq, damage_of, xa0, disp0, disp, arm0, arm};
+    const PointUpdate<Law> point{law, p0, constants, history, xa0, disp0, disp, arm0, arm};
     const Index begin = net.point_begin[c], end = net.point_begin[c + 1];
 #pragma omp simd reduction(+ : phi_n, phi_1, phi_2, mom_n, mom_1, mom_2, damage, friction)
     for (Index m = begin; m < end; ++m) {

@@ -8,15 +8,11 @@
 
 namespace rcdem {
 
-struct LocalPointArrays {
-  std::vector<Real> fn, fs1, fs2, un, us1, us2, un_max, us_max_sq, damage;
+// The arrays as raw pointers, for the contact loop's SIMD lanes: a point's history in and out.
+struct LocalPointPointers {
+  Real *fn, *fs1, *fs2, *un, *us1, *us2, *un_max, *us_max_sq, *damage;
 
-  Index size() const { return static_cast<Index>(fn.size()); }
-  void assign(std::size_t n) {
-    for (auto* a : {&fn, &fs1, &fs2, &un, &us1, &us2, &un_max, &us_max_sq, &damage})
-      a->assign(n, 0.0);
-  }
-  PlanePointState load(Index m) const {
+  [[gnu::always_inline]] PlanePointState load(Index m) const {
     PlanePointState s;
     s.fn = fn[m];
     s.fs = {fs1[m], fs2[m]};
@@ -27,7 +23,7 @@ struct LocalPointArrays {
     s.damage = damage[m];
     return s;
   }
-  void store(Index m, const PlanePointState& s) {
+  [[gnu::always_inline]] void store(Index m, const PlanePointState& s) const {
     fn[m] = s.fn;
     fs1[m] = s.fs.x;
     fs2[m] = s.fs.y;
@@ -37,6 +33,20 @@ struct LocalPointArrays {
     un_max[m] = s.un_max;
     us_max_sq[m] = s.us_max_sq;
     damage[m] = s.damage;
+  }
+};
+
+struct LocalPointArrays {
+  std::vector<Real> fn, fs1, fs2, un, us1, us2, un_max, us_max_sq, damage;
+
+  Index size() const { return static_cast<Index>(fn.size()); }
+  LocalPointPointers pointers() {
+    return {fn.data(),  fs1.data(),    fs2.data(),       un.data(),    us1.data(),
+            us2.data(), un_max.data(), us_max_sq.data(), damage.data()};
+  }
+  void assign(std::size_t n) {
+    for (auto* a : {&fn, &fs1, &fs2, &un, &us1, &us2, &un_max, &us_max_sq, &damage})
+      a->assign(n, 0.0);
   }
   // Point m with its shear vectors as frame components (t1, t2, 0) (ContactState::to_world turns
   // them into world vectors).
