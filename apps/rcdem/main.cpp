@@ -177,12 +177,12 @@ void apply_override(rcdem::Scenario& s, const std::string& item) {
 
 int calibrate(const fs::path& scenario_path, fs::path out, bool force, double size,
               double rate_factor, const std::vector<std::string>& sets, const std::string& target,
-                            double tolerance, int iterations, bool peak_only) {
+              double tolerance, int iterations, bool peak_only) {
   rcdem::Scenario base = rcdem::load_scenario(scenario_path);
   for (const auto& item : sets) apply_override(base, item);
   rcdem::CalibrationOptions opt;
   opt.uniaxial.size = size;
-    opt.uniaxial.rate_factor = rate_factor;
+  opt.uniaxial.rate_factor = rate_factor;
   if (peak_only) {
     opt.uniaxial.stop_after_peak = 0.85;
     opt.uniaxial.snapshots = 0;
@@ -246,7 +246,8 @@ int study(const std::string& name, fs::path scenarios, fs::path out, bool force,
 int main(int argc, char** argv) {
   CLI::App app{"rcdem: 3D rigid-particle model for reinforced-concrete fracture"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", std::string(rcdem::build_version()) + " (" + rcdem::build_git_hash() + ")");
+  app.set_version_flag("--version",
+                       std::string(rcdem::build_version()) + " (" + rcdem::build_git_hash() + ")");
   bool quiet = false;
   app.add_flag("-q,--quiet", quiet, "No progress or summary lines");
 
@@ -294,9 +295,10 @@ int main(int argc, char** argv) {
                   "Search contact parameters for E=..,nu=..,sigma_c=..,sigma_t=.. (SI)");
   cal->add_option("--tolerance", tolerance, "Relative tolerance of the search")
       ->check(CLI::Range(0.001, 0.5));
-    bool peak_only = false;
-  cal->add_flag("--peak-only", peak_only,
-                "Stop each test soon after its peak (E, nu and strengths only; no post-peak curve)");
+  bool peak_only = false;
+  cal->add_flag(
+      "--peak-only", peak_only,
+      "Stop each test soon after its peak (E, nu and strengths only; no post-peak curve)");
   cal->add_option("--iterations", iterations, "At most this many search iterations")
       ->check(CLI::Range(1, 50));
 
@@ -334,7 +336,7 @@ int main(int argc, char** argv) {
       return run(scenario, out, force, resume, checkpoint_every,
                  std::vector<std::string>(argv, argv + argc));
     if (*cal)
-            return calibrate(scenario, out, force, size, rate_factor, sets, target, tolerance, iterations,
+      return calibrate(scenario, out, force, size, rate_factor, sets, target, tolerance, iterations,
                        peak_only);
     if (*stc) return study(study_name, study_scenarios, out, force, quick, cases, jobs);
     if (*schema) {

@@ -29,7 +29,6 @@ struct PointUpdate {
   Vec3 xa0;              // A's centre at t = 0
   Vec3 disp0;            // E^T u0
   Eigen::Matrix3d disp;  // E^T (R_B - R_A)
-  Vec3 arm0;             // E^T u0 / 2
   Eigen::Matrix3d arm;   // E^T (R_A + R_B) / 2
 
   [[gnu::always_inline]] PointSums operator()(Index m) const {
@@ -49,9 +48,10 @@ struct PointUpdate {
     out.f_2 = s.fs.y;
     out.damage = res.dissipated - res.dissipated_friction;
     out.friction = res.dissipated_friction;
-    const Real a_n = arm0.x() + arm(0, 0) * rx + arm(0, 1) * ry + arm(0, 2) * rz;
-    const Real a_1 = arm0.y() + arm(1, 0) * rx + arm(1, 1) * ry + arm(1, 2) * rz;
-    const Real a_2 = arm0.z() + arm(2, 0) * rx + arm(2, 1) * ry + arm(2, 2) * rz;
+    // The lever arm: E^T u0 / 2 + arm r.
+    const Real a_n = 0.5 * disp0.x() + arm(0, 0) * rx + arm(0, 1) * ry + arm(0, 2) * rz;
+    const Real a_1 = 0.5 * disp0.y() + arm(1, 0) * rx + arm(1, 1) * ry + arm(1, 2) * rz;
+    const Real a_2 = 0.5 * disp0.z() + arm(2, 0) * rx + arm(2, 1) * ry + arm(2, 2) * rz;
     out.m_n = a_1 * out.f_2 - a_2 * out.f_1;
     out.m_1 = a_2 * out.f_n - a_n * out.f_2;
     out.m_2 = a_n * out.f_1 - a_1 * out.f_n;
@@ -118,11 +118,10 @@ void evaluate_contacts(const Law& law, const ContactNetwork& net, const Bodies& 
     const Eigen::Matrix3d disp = frame_t * (rb - ra);
     const Vec3 disp0 = frame_t * u0;
     const Eigen::Matrix3d arm = frame_t * (0.5 * (ra + rb));
-    const Vec3 arm0 = 0.5 * disp0;
     const Vec3 xa0 = x0[a];
     Real phi_n = 0.0, phi_1 = 0.0, phi_2 = 0.0, mom_n = 0.0, mom_1 = 0.0, mom_2 = 0.0;
     Real damage = 0.0, friction = 0.0;
-    const PointUpdate<Law> point{law, p0, constants, history, xa0, disp0, disp, arm0, arm};
+    const PointUpdate<Law> point{law, p0, constants, history, xa0, disp0, disp, arm};
     const Index begin = net.point_begin[c], end = net.point_begin[c + 1];
 #pragma omp simd reduction(+ : phi_n, phi_1, phi_2, mom_n, mom_1, mom_2, damage, friction)
     for (Index m = begin; m < end; ++m) {

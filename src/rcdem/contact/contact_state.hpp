@@ -14,8 +14,8 @@ namespace rcdem {
 Vec3 any_perpendicular(const Vec3& n);
 
 struct ContactState {
-  LocalPointArrays point;              // per local point, frame components
-  std::vector<Vec3> normal;            // per contact: unit A -> B at the last evaluation
+  LocalPointArrays point;    // per local point, frame components
+  std::vector<Vec3> normal;  // per contact: unit A -> B at the last evaluation
   // Per contact: the first axis t1 of the contact plane's frame (t2 = n x t1). The frame turns
   // with the contact (SPEC 4), and every point's shear vectors fs, us are kept as components
   // (along t1, along t2, 0) in it: one frame rotated per contact instead of two vectors per point.

@@ -2,6 +2,7 @@
 // The histories of a network's local points as a structure of arrays (one array per quantity,
 // shear vectors as their two components in the contact's frame): the contact loop streams each
 // array once and its inner loop over a contact's points runs in SIMD lanes.
+#include <array>
 #include <vector>
 
 #include "rcdem/contact/laws/local_point_state.hpp"
@@ -44,9 +45,15 @@ struct LocalPointArrays {
     return {fn.data(),  fs1.data(),    fs2.data(),       un.data(),    us1.data(),
             us2.data(), un_max.data(), us_max_sq.data(), damage.data()};
   }
+  // The nine arrays in the order above (for whole-array work: sizing, checkpoints).
+  std::array<std::vector<Real>*, 9> arrays() {
+    return {&fn, &fs1, &fs2, &un, &us1, &us2, &un_max, &us_max_sq, &damage};
+  }
+  std::array<const std::vector<Real>*, 9> arrays() const {
+    return {&fn, &fs1, &fs2, &un, &us1, &us2, &un_max, &us_max_sq, &damage};
+  }
   void assign(std::size_t n) {
-    for (auto* a : {&fn, &fs1, &fs2, &un, &us1, &us2, &un_max, &us_max_sq, &damage})
-      a->assign(n, 0.0);
+    for (auto* a : arrays()) a->assign(n, 0.0);
   }
   // Point m with its shear vectors as frame components (t1, t2, 0) (ContactState::to_world turns
   // them into world vectors).

@@ -1,7 +1,5 @@
 #include "rcdem/io/checkpoint.hpp"
 
-#include "rcdem/io/atomic_file.hpp"
-
 #include <fcntl.h>
 #include <fmt/format.h>
 #include <sys/stat.h>
@@ -16,6 +14,7 @@
 
 #include "rcdem/core/build_info.hpp"
 #include "rcdem/core/error.hpp"
+#include "rcdem/io/atomic_file.hpp"
 #include "rcdem/io/crack_record.hpp"
 #include "rcdem/io/run_output.hpp"
 #include "rcdem/solver/simulation.hpp"
@@ -356,10 +355,7 @@ struct CheckpointAccess {
     ar.table(name + ".points", static_cast<std::size_t>(c.point.size()), 9,
              [&](auto& r, std::size_t i) {
                const auto m = static_cast<Index>(i);
-               auto& p = c.point;
-               for (auto* a : {&p.fn, &p.fs1, &p.fs2, &p.un, &p.us1, &p.us2, &p.un_max,
-                               &p.us_max_sq, &p.damage})
-                 r.f((*a)[m]);
+               for (auto* a : c.point.arrays()) r.f((*a)[m]);
              });
   }
 
@@ -654,11 +650,11 @@ Parsed parse(const fs::path& file) {
                      ? fmt::format("format version {} is newer than this rcdem reads ({}); "
                                    "resume it with the rcdem that wrote it",
                                    h.version, kCheckpointVersion)
-                     : h.version >= 1
-                         ? fmt::format("format version {} is older than this rcdem reads ({}); "
-                                       "resume it with the rcdem that wrote it",
-                                       h.version, kCheckpointVersion)
-                         : fmt::format("unknown format version {}", h.version)};
+                 : h.version >= 1
+                     ? fmt::format("format version {} is older than this rcdem reads ({}); "
+                                   "resume it with the rcdem that wrote it",
+                                   h.version, kCheckpointVersion)
+                     : fmt::format("unknown format version {}", h.version)};
   h.file_size = load_le64(u + 16);
   if (d.size() < h.file_size)
     throw Reject{fmt::format("truncated: {} of {} bytes", d.size(), h.file_size)};

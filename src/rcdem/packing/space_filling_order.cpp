@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <vector>
 
 namespace rcdem {
 
@@ -33,20 +34,18 @@ std::uint64_t morton_key(const Vec3& x, const Vec3& lo, const Vec3& hi) {
   return key;
 }
 
-std::vector<Index> sort_along_morton_curve(Particles& p, const Vec3& lo, const Vec3& hi) {
+void sort_along_morton_curve(Particles& p, const Vec3& lo, const Vec3& hi) {
   const auto n = static_cast<std::size_t>(p.size());
   std::vector<std::uint64_t> key(n);
   for (std::size_t i = 0; i < n; ++i) key[i] = morton_key(p.position[i], lo, hi);
   std::vector<Index> order(n);
   std::iota(order.begin(), order.end(), Index{0});
-  std::stable_sort(order.begin(), order.end(),
-                   [&](Index a, Index b) { return key[a] < key[b]; });
+  std::stable_sort(order.begin(), order.end(), [&](Index a, Index b) { return key[a] < key[b]; });
   Particles sorted;
   for (Index i : order) sorted.add(p.position[i], p.radius[i], p.kind[i]);
   if (!p.cell_volume.empty())
     for (Index i : order) sorted.cell_volume.push_back(p.cell_volume[i]);
   p = std::move(sorted);
-  return order;
 }
 
 }  // namespace rcdem

@@ -4,7 +4,6 @@
 // contact; with the generator's random numbering those reads missed the cache (a quarter of the
 // contact loop's time went to waiting for body positions), with this order they mostly hit.
 #include <cstdint>
-#include <vector>
 
 #include "rcdem/state/particles.hpp"
 
@@ -15,7 +14,6 @@ namespace rcdem {
 std::uint64_t morton_key(const Vec3& x, const Vec3& lo, const Vec3& hi);
 
 // Renumbers the particles in increasing Morton key (ties keep their order: deterministic).
-// Returns old index of each new position.
-std::vector<Index> sort_along_morton_curve(Particles& particles, const Vec3& lo, const Vec3& hi);
+void sort_along_morton_curve(Particles& particles, const Vec3& lo, const Vec3& hi);
 
 }  // namespace rcdem
