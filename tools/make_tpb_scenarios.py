@@ -61,6 +61,7 @@ def scenario(model, interface, mode):
     tail = ("\n[loading]\ncontrol_plate = \"load\"\n\n"
             "[solver]\ndt_safety = 0.5        # SPEC 6's upper bound (docs/case-study.md)\n"
             "damping = 0.3          # 0.7 lifts the cracking load with the rate (docs/case-study.md)\n"
+            "particle_rotational_inertia_scaling = 2.5   # their rotation no longer sets the step\n"
             + ("bar_rotational_inertia_scaling = 30   # the bars' rotation no longer sets the step\n" if n else "")
             + "\n"
             f"[stop]\ndisplacement = {mode['stop']:g}   # m of midspan deflection\n"

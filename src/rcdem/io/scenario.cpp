@@ -301,6 +301,8 @@ Scenario convert(Reader& r, const std::string& text) {
   s.solver.damping = r.real("solver.damping");
   s.solver.mass_scaling = r.real("solver.mass_scaling");
   s.solver.bar_rotational_inertia_scaling = r.real("solver.bar_rotational_inertia_scaling");
+  s.solver.particle_rotational_inertia_scaling =
+      r.real("solver.particle_rotational_inertia_scaling");
   for (const auto& inst : r.instances["plates.*"]) {
     PlateSettings p;
     p.name = inst.substr(inst.find('.') + 1);

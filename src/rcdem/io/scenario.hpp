@@ -55,7 +55,8 @@ struct SolverSettings {
   Real time_step = 0.0;  // 0 = automatic
   Real damping = 0.7;
   Real mass_scaling = 1.0;
-  Real bar_rotational_inertia_scaling = 1.0;  // the cylinders' moments of inertia only
+  Real bar_rotational_inertia_scaling = 1.0;       // the cylinders' moments of inertia only
+  Real particle_rotational_inertia_scaling = 1.0;  // the particles' moments of inertia only
 };
 
 struct PlateSettings {

@@ -7,6 +7,7 @@
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/parallel.hpp"
 #include "rcdem/reinforcement/rigid_rotation.hpp"
+#include "rcdem/solver/body_stiffness.hpp"
 #include "rcdem/tessellation/interface_network_builder.hpp"
 
 namespace rcdem {
@@ -19,6 +20,7 @@ Simulation::Simulation(const Scenario& sc, Specimen specimen)
       bilinear_{sc.contact.sigma_nt, sc.contact.tau, sc.contact.G_fn, sc.contact.G_fs,
                 sc.contact.mu_c},
       damping_(sc.solver.damping) {
+  for (Vec3& inertia : bodies_.inertia) inertia *= sc.solver.particle_rotational_inertia_scaling;
   // The bars' cylinders: exact mass and inertia (SPEC 7), principal frame z along the axis.
   for (const Bar& bar : specimen_.bars)
     for (const auto& cyl : bar.cylinders) {
@@ -101,66 +103,66 @@ Simulation::Simulation(const Scenario& sc, Specimen specimen)
 }
 
 void Simulation::compute_stable_time_step() {
-  const auto n = static_cast<std::size_t>(bodies_.size());
-  // Per body: the translational stiffness sum, and the rotational one about each principal axis
-  // e_k (a spring kk at lever r turns the body about e_k with stiffness kk |r x e_k|^2). Per axis,
-  // because a cylinder's axial moment is (2r/L)^2 times smaller than its transverse one while
-  // the springs along it act mostly through transverse lever arms: pairing the smallest moment
-  // with the largest rotational sum made the bars set a step 3x shorter than any particle needs.
-  std::vector<Real> k(n, 0.0);
-  std::vector<Vec3> kr(n, Vec3::Zero());
-  const auto add_spring = [&](Index i, Real kk, const Vec3& arm) {
-    k[i] += kk;
-    const Eigen::Matrix3d axes = bodies_.orientation0[i].toRotationMatrix();
-    const Real r2 = arm.squaredNorm();
-    for (int a = 0; a < 3; ++a) {
-      const Real along = arm.dot(axes.col(a));
-      kr[i][a] += kk * std::max<Real>(0.0, r2 - along * along);
+  // SPEC 6's sqrt(m / sum k) per body, with "sum k" the body's own 6x6 stiffness block
+  // (solver/body_stiffness.hpp: why a block, and what the safety factor covers).
+  BodyStiffness blocks(bodies_.size());
+  const auto unit = [](const Vec3& v) { return Vec3(v / v.norm()); };
+  const ContactNetwork& nw = specimen_.contacts;
+  for (Index c = 0; c < nw.contact_count(); ++c) {
+    const Index a = nw.particle_a[c], b = nw.particle_b[c];
+    const Vec3 n = unit(bodies_.position0[b] - bodies_.position0[a]);
+    for (Index m = nw.point_begin[c]; m < nw.point_begin[c + 1]; ++m) {
+      const LocalPointConstants& k = nw.constants[m];
+      blocks.add_spring(a, n, k.kn, k.ks, nw.point_position0[m] - bodies_.position0[a]);
+      blocks.add_spring(b, n, k.kn, k.ks, nw.point_position0[m] - bodies_.position0[b]);
     }
-  };
-  // The stiffer of the normal and shear springs (alpha may exceed 1).
-  const auto add_network = [&](const ContactNetwork& nw) {
-    for (Index c = 0; c < nw.contact_count(); ++c) {
-      const Index a = nw.particle_a[c], b = nw.particle_b[c];
-      for (Index m = nw.point_begin[c]; m < nw.point_begin[c + 1]; ++m) {
-        const Real kk = std::max(nw.constants[m].kn, nw.constants[m].ks);
-        add_spring(a, kk, nw.point_position0[m] - bodies_.position0[a]);
-        add_spring(b, kk, nw.point_position0[m] - bodies_.position0[b]);
+  }
+  // Interface contacts: normal across the cylinder's axis through the interface sphere.
+  for (const auto& ic : specimen_.interfaces)
+    for (Index c = 0; c < ic.net.contact_count(); ++c) {
+      const Index a = ic.net.particle_a[c], b = ic.net.particle_b[c];
+      const Vec3 axis = bodies_.orientation0[b] * Vec3::UnitZ();
+      const Vec3 d = bodies_.position0[a] - ic.anchor0[c];
+      const Vec3 n = unit(d - d.dot(axis) * axis);
+      for (Index m = ic.net.point_begin[c]; m < ic.net.point_begin[c + 1]; ++m) {
+        const LocalPointConstants& k = ic.net.constants[m];
+        blocks.add_spring(a, n, k.kn, k.ks, ic.net.point_position0[m] - bodies_.position0[a]);
+        blocks.add_spring(b, n, k.kn, k.ks, ic.net.point_position0[m] - bodies_.position0[b]);
       }
     }
-  };
-  add_network(specimen_.contacts);
-  for (const auto& ic : specimen_.interfaces) add_network(ic.net);
   for (Index j = 0; j < plate_contacts_.size(); ++j) {
     const Index i = plate_contacts_.particle[j];
-    const Real kk = std::max(plate_contacts_.constants[j].kn, plate_contacts_.constants[j].ks);
-    add_spring(i, kk, plate_contacts_.point0[j] - bodies_.position0[i]);
+    const LocalPointConstants& k = plate_contacts_.constants[j];
+    blocks.add_spring(i, plates_[plate_contacts_.plate[j]].normal, k.kn, k.ks,
+                      plate_contacts_.point0[j] - bodies_.position0[i]);
   }
-  // Interaction nodes join cylinders, whose body axis z is the bar's axis.
-  for (std::size_t j = 0; j < nodes_.size(); ++j)
+  // Interaction nodes (9): k_a along the node's axis and k_t across it, at the node; k_b and
+  // k_theta as rotational springs. The node's vectors are world vectors at t = 0.
+  for (std::size_t j = 0; j < nodes_.size(); ++j) {
+    const InteractionNode& node = nodes_[j];
+    const Vec3 axis = unit(node.axis_a + node.axis_b);
+    const Mat3 kr = node.k.bending * (Mat3::Identity() - axis * axis.transpose()) +
+                    node.k.torsion * axis * axis.transpose();
     for (const bool for_b : {false, true}) {
       const Index i = for_b ? node_refs_[j].body_b : node_refs_[j].body_a;
-      const NodeBodyStiffness ns = node_body_stiffness(nodes_[j], for_b);
-      k[i] += ns.translation;
-      kr[i] += Vec3(ns.rotation_transverse, ns.rotation_transverse, ns.rotation_axial);
+      blocks.add_spring(i, axis, node.k.axial, node.k.shear, for_b ? node.arm_b : node.arm_a);
+      blocks.add_rotational(i, kr);
     }
+  }
   Real dt = std::numeric_limits<Real>::infinity();
-  const auto limit = [&](Real t, std::size_t i, int what) {
-    if (t >= dt) return;
-    dt = t;
-    const bool cylinder = static_cast<Index>(i) >= specimen_.concrete();
-    static const char* const kWhat[] = {"translation", "rotation about body axis x",
-                                        "rotation about body axis y", "rotation about body axis z"};
-    static const char* const kCylinder[] = {"translation", "bending rotation", "bending rotation",
-                                            "torsion"};
-    stable_dt_limit_ =
-        fmt::format("{} {} ({})", cylinder ? "bar cylinder" : "particle", i,
-                    cylinder ? kCylinder[what] : kWhat[what]);
-  };
-  for (std::size_t i = 0; i < n; ++i) {
-    if (k[i] > 0.0) limit(std::sqrt(bodies_.mass[i] / k[i]), i, 0);
-    for (int a = 0; a < 3; ++a)
-      if (kr[i][a] > 0.0) limit(std::sqrt(bodies_.inertia[i][a] / kr[i][a]), i, a + 1);
+  for (Index i = 0; i < bodies_.size(); ++i) {
+    const BodyStiffness::Limit l = blocks.limit(i, bodies_.mass[i], bodies_.inertia[i],
+                                                bodies_.orientation0[i].toRotationMatrix());
+    if (l.time_step >= dt) continue;
+    dt = l.time_step;
+    const bool cylinder = i >= specimen_.concrete();
+    static const char* const kWhat[] = {"rotation about body axis x", "rotation about body axis y",
+                                        "rotation about body axis z"};
+    static const char* const kCylinder[] = {"bending rotation", "bending rotation", "torsion"};
+    stable_dt_limit_ = fmt::format("{} {} ({})", cylinder ? "bar cylinder" : "particle", i,
+                                   !l.rotation ? "translation"
+                                   : cylinder  ? kCylinder[l.body_axis]
+                                               : kWhat[l.body_axis]);
   }
   if (!std::isfinite(dt)) fail("the specimen has no contact: no time step can be estimated");
   stable_dt_ = dt;
