@@ -409,13 +409,14 @@ struct CheckpointAccess {
       r.f(s.plate_displacement_prev_[p]);
     });
     auto& pc = s.plate_contacts_;
-    ar.table("plate_contacts", pc.state.size(), 20, [&](auto& r, std::size_t k) {
+    ar.table("plate_contacts", pc.state.size(), 21, [&](auto& r, std::size_t k) {
       point(r, pc.state[k]);
       r.v(pc.force[k]);
       r.v(pc.torque[k]);
       r.f(pc.strain_energy[k]);
       r.f(pc.dissipated_friction[k]);
       r.u8(pc.active[k]);
+      r.f(pc.entry_opening[k]);
     });
     ar.table("pulled_bars", s.pulled_.size(), 7, [&](auto& r, std::size_t k) {
       auto& pb = s.pulled_[k];

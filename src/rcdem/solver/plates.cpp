@@ -99,6 +99,7 @@ PlateContacts make_plate_contacts(const std::vector<Plate>& plates, const Bounda
   pc.strain_energy.assign(n, 0.0);
   pc.dissipated_friction.assign(n, 0.0);
   pc.active.assign(n, 0);
+  pc.entry_opening.assign(n, 0.0);
   return pc;
 }
 
@@ -119,12 +120,23 @@ void evaluate_plate_contacts(std::vector<Plate>& plates, PlateContacts& pc, cons
                           pp[va] <= plate.v_max;
     LocalPointState& s = pc.state[k];
     const LocalPointConstants& c = pc.constants[k];
+    const bool was_active = pc.active[k] != 0;
+    // An unglued contact that reaches the rectangle from beside it, already below the plate's
+    // plane (its last opening, kept while it was inactive, was negative too), measures its
+    // opening from where it entered; one that meets the plate face-on, from the plane.
+    if (!plate.glued && !was_active && on_plate)
+      pc.entry_opening[k] = (s.un < 0.0 && un < 0.0) ? un : 0.0;
+    const Real opening = plate.glued ? un : un - pc.entry_opening[k];
     Real friction_loss = 0.0;
-    if (!on_plate || (!plate.glued && un >= 0.0)) {
-      s = LocalPointState{};  // separated: the contact forgets its history
+    if (!on_plate || (!plate.glued && opening > 0.0)) {
+      // Separated (or off the rectangle): the contact forgets its history, and the energy its
+      // springs held leaves the model; the ledger books it as lost, not as vanished.
+      if (was_active) friction_loss = 0.5 * s.fn * s.fn / c.kn + 0.5 * s.fs.squaredNorm() / c.ks;
+      s = LocalPointState{};
       s.un = un;
       s.us = us;
       pc.active[k] = 0;
+      pc.entry_opening[k] = 0.0;
     } else if (plate.glued) {
       s.fn = c.kn * un;
       s.fs = -c.ks * us;
@@ -133,10 +145,9 @@ void evaluate_plate_contacts(std::vector<Plate>& plates, PlateContacts& pc, cons
       pc.active[k] = 1;
     } else {
       // Unilateral, Coulomb friction: the shear spring is incremental so that it can slide.
-      const bool was_active = pc.active[k] != 0;
       const Vec3 dus = was_active ? Vec3(us - s.us) : Vec3::Zero();
       const Vec3 fs_old = s.fs;
-      s.fn = c.kn * un;  // compression: negative
+      s.fn = c.kn * opening;  // compression: negative
       Vec3 fs = s.fs - c.ks * dus;
       const Real cap = plate.friction * (-s.fn);
       const Real len = fs.norm();
