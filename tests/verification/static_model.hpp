@@ -1,18 +1,44 @@
 #pragma once
-// For verification tests: a small specimen's generalised forces and tangent stiffness, built
-// from the solver's own contact and plate routines (EL law), to compare the dynamic solver with
-// statics and the time-step estimate with the assembly's eigenvalues.
+// For verification tests: small elastic specimens, and their generalised forces and tangent
+// stiffness built from the solver's own contact and plate routines (EL law), to compare the
+// dynamic solver with statics and the time-step estimate with the assembly's eigenvalues.
+#include <fmt/format.h>
+
 #include <Eigen/Dense>
+#include <string>
 #include <vector>
 
 #include "rcdem/contact/contact_loop.hpp"
 #include "rcdem/contact/contact_state.hpp"
 #include "rcdem/contact/laws/elastic.hpp"
+#include "rcdem/io/scenario.hpp"
 #include "rcdem/solver/plates.hpp"
 #include "rcdem/state/bodies.hpp"
 #include "rcdem/state/contact_network.hpp"
 
 namespace rcdem::test {
+
+// An elastic (EL) box of edge `size` with k_s = alpha k_n, undamped unless asked; `extra` goes
+// into its [solver] table and may add tables after it (plates).
+inline Scenario elastic_box(Real size, const std::string& extra = "", Real damping = 0.0,
+                            Real alpha = 0.3) {
+  return parse_scenario(fmt::format(R"(
+[specimen]
+shape = "box"
+size = [{0}, {0}, {0}]
+[generation]
+seed = 3
+relaxation_iterations = 100
+[contact]
+law = "EL"
+alpha = {3}
+[solver]
+damping = {1}
+{2}
+)",
+                                    size, damping, extra, alpha),
+                        "elastic_box.toml");
+}
 
 // Generalised forces (force, torque per body) of the contacts and plates at displacements q
 // (translation, rotation vector per body) from the initial state, the top plate moved by delta;

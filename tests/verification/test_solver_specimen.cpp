@@ -30,24 +30,7 @@ using namespace rcdem;
 
 namespace {
 
-// An elastic, undamped box, no plates unless `extra` adds them.
-Scenario elastic_box(Real size, const std::string& extra = "", Real damping = 0.0) {
-  return parse_scenario(fmt::format(R"(
-[specimen]
-shape = "box"
-size = [{0}, {0}, {0}]
-[generation]
-seed = 3
-relaxation_iterations = 100
-[contact]
-law = "EL"
-[solver]
-damping = {1}
-{2}
-)",
-                                    size, damping, extra),
-                        "elastic_box.toml");
-}
+using test::elastic_box;
 
 // Random velocities of about 1 mm/s and spins of about 1 mm/s over the radius: small enough that
 // the motion stays linear (strains ~ 1e-7), large enough to load every contact.

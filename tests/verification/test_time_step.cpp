@@ -67,20 +67,9 @@ TEST(BodyStiffness, IsotropicSpringsAndPrincipalFrame) {
 namespace {
 
 Scenario glued_box(Real size, Real alpha, Real inertia_scaling) {
-  return parse_scenario(fmt::format(R"(
-[specimen]
-shape = "box"
-size = [{0}, {0}, {0}]
-[generation]
-seed = 3
-relaxation_iterations = 100
-[contact]
-law = "EL"
-alpha = {1}
-[solver]
-damping = 0.0
-dt_safety = 0.5
-particle_rotational_inertia_scaling = {2}
+  return test::elastic_box(size,
+                           fmt::format(R"(dt_safety = 0.5
+particle_rotational_inertia_scaling = {}
 [plates.bottom]
 face = "z-"
 glued = true
@@ -88,8 +77,8 @@ glued = true
 face = "z+"
 glued = true
 )",
-                                    size, alpha, inertia_scaling),
-                        "glued_box.toml");
+                                       inertia_scaling),
+                           0.0, alpha);
 }
 
 // omega_max of M^-1 K, K the tangent stiffness assembled from the solver's own force routines.
