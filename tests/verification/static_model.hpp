@@ -18,6 +18,13 @@
 
 namespace rcdem::test {
 
+// Glued platens on the box's bottom and top faces (TOML tables); `top` adds keys to the top one.
+inline std::string glued_platens(const std::string& top = "") {
+  return "[plates.bottom]\nface = \"z-\"\nglued = true\n[plates.top]\nface = \"z+\"\nglued = "
+         "true\n" +
+         top;
+}
+
 // An elastic (EL) box of edge `size` with k_s = alpha k_n, undamped unless asked; `extra` goes
 // into its [solver] table and may add tables after it (plates).
 inline Scenario elastic_box(Real size, const std::string& extra = "", Real damping = 0.0,

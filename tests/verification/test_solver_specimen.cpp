@@ -313,21 +313,11 @@ dt_safety = 0.5
 TEST(SolverSpecimen, GluedPlateTensionReachesStaticSolution) {
   const Real size = 0.03, strain = 1e-4;
   const auto scenario = [&](Real v, Real ramp) {
-    return elastic_box(size,
-                       fmt::format(R"(
-[plates.bottom]
-face = "z-"
-glued = true
-[plates.top]
-face = "z+"
-glued = true
-velocity = {}
-ramp_time = {}
-[loading]
-control_plate = "top"
-)",
-                                   v, ramp),
-                       0.7);
+    return elastic_box(
+        size,
+        test::glued_platens(fmt::format(
+            "velocity = {}\nramp_time = {}\n[loading]\ncontrol_plate = \"top\"\n", v, ramp)),
+        0.7);
   };
   const Specimen sp = build_specimen(scenario(1.0, 0.0));
   // The plate springs count in the stable estimate: the time step comes from the plated specimen.

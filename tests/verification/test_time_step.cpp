@@ -67,18 +67,11 @@ TEST(BodyStiffness, IsotropicSpringsAndPrincipalFrame) {
 namespace {
 
 Scenario glued_box(Real size, Real alpha, Real inertia_scaling) {
-  return test::elastic_box(size,
-                           fmt::format(R"(dt_safety = 0.5
-particle_rotational_inertia_scaling = {}
-[plates.bottom]
-face = "z-"
-glued = true
-[plates.top]
-face = "z+"
-glued = true
-)",
-                                       inertia_scaling),
-                           0.0, alpha);
+  return test::elastic_box(
+      size,
+      fmt::format("dt_safety = 0.5\nparticle_rotational_inertia_scaling = {}\n", inertia_scaling) +
+          test::glued_platens(),
+      0.0, alpha);
 }
 
 // omega_max of M^-1 K, K the tangent stiffness assembled from the solver's own force routines.
