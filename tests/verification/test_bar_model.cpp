@@ -52,6 +52,26 @@ Quat rotation(const Vec3& axis, Real angle) {
   return Quat(Eigen::AngleAxis<Real>(angle, axis.normalized()));
 }
 
+// What one node adds to the stiffness felt by cylinder A (or B), summed per body for this
+// harness's own scalar time step sqrt(m / sum k), sqrt(I / sum k) (the solver uses each body's
+// 6x6 block, solver/body_stiffness; this chain keeps the scalar sums its margins were set with).
+struct NodeBodyStiffness {
+  Real translation;          // max(k_a, k_t)
+  Real rotation_transverse;  // k_b + the translational springs acting through the arm
+  Real rotation_axial;       // k_theta
+};
+NodeBodyStiffness node_body_stiffness(const InteractionNode& node, bool for_b) {
+  const NodeStiffness& k = node.k;
+  const Vec3& arm = for_b ? node.arm_b : node.arm_a;
+  const Vec3& axis = for_b ? node.axis_b : node.axis_a;
+  // Turning the cylinder moves the end of its arm: the part of the arm along the axis moves
+  // across it (shear spring), the part across the axis moves along it (axial spring).
+  const Real along = arm.dot(axis);
+  const Real across2 = std::max(0.0, arm.squaredNorm() - along * along);
+  return {std::max(k.axial, k.shear), k.bending + k.shear * along * along + k.axial * across2,
+          k.torsion};
+}
+
 // A bar and its integrator. Orientations are rotations since t = 0 (the solver's convention),
 // so the nodes are built with identity reference orientations and each cylinder's principal
 // frame at t = 0 is passed to advance_rotation.

@@ -146,16 +146,4 @@ Real node_elastic_energy(const InteractionNode& node, const NodeState& s) {
                 s.twisting_moment * s.twisting_moment / k.torsion);
 }
 
-NodeBodyStiffness node_body_stiffness(const InteractionNode& node, bool for_b) {
-  const NodeStiffness& k = node.k;
-  const Vec3& arm = for_b ? node.arm_b : node.arm_a;
-  const Vec3& axis = for_b ? node.axis_b : node.axis_a;
-  // Turning the cylinder moves the end of its arm: the part of the arm along the axis moves
-  // across it (shear spring), the part across the axis moves along it (axial spring).
-  const Real along = arm.dot(axis);
-  const Real across2 = std::max(0.0, arm.squaredNorm() - along * along);
-  return {std::max(k.axial, k.shear), k.bending + k.shear * along * along + k.axial * across2,
-          k.torsion};
-}
-
 }  // namespace rcdem

@@ -99,13 +99,4 @@ NodeForces evaluate_node(const InteractionNode& node, NodeState& state, const Ve
 // Elastic energy held in the node: N^2/2k_a + |V|^2/2k_t + |M_b|^2/2k_b + M_t^2/2k_theta.
 Real node_elastic_energy(const InteractionNode& node, const NodeState& state);
 
-// What one node adds to the stiffness felt by cylinder A (or B) for SPEC 6's time-step estimate
-// sqrt(m / sum k), sqrt(I / sum k) per body.
-struct NodeBodyStiffness {
-  Real translation;          // max(k_a, k_t)
-  Real rotation_transverse;  // k_b + the translational springs acting through the arm
-  Real rotation_axial;       // k_theta
-};
-NodeBodyStiffness node_body_stiffness(const InteractionNode& node, bool for_b);
-
 }  // namespace rcdem

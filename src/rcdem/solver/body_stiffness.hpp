@@ -41,8 +41,6 @@ class BodyStiffness {
   // For body i of mass m and principal moments `inertia` about the columns of `axes` (world).
   Limit limit(Index i, Real mass, const Vec3& inertia, const Mat3& axes) const;
 
-  const Mat6& block(Index i) const { return k_[static_cast<std::size_t>(i)]; }
-
  private:
   std::vector<Mat6> k_;
 };

@@ -107,28 +107,24 @@ void Simulation::compute_stable_time_step() {
   // (solver/body_stiffness.hpp: why a block, and what the safety factor covers).
   BodyStiffness blocks(bodies_.size());
   const auto unit = [](const Vec3& v) { return Vec3(v / v.norm()); };
-  const ContactNetwork& nw = specimen_.contacts;
-  for (Index c = 0; c < nw.contact_count(); ++c) {
+  const auto add_points = [&](const ContactNetwork& nw, Index c, const Vec3& n) {
     const Index a = nw.particle_a[c], b = nw.particle_b[c];
-    const Vec3 n = unit(bodies_.position0[b] - bodies_.position0[a]);
     for (Index m = nw.point_begin[c]; m < nw.point_begin[c + 1]; ++m) {
       const LocalPointConstants& k = nw.constants[m];
       blocks.add_spring(a, n, k.kn, k.ks, nw.point_position0[m] - bodies_.position0[a]);
       blocks.add_spring(b, n, k.kn, k.ks, nw.point_position0[m] - bodies_.position0[b]);
     }
-  }
+  };
+  const ContactNetwork& nw = specimen_.contacts;
+  for (Index c = 0; c < nw.contact_count(); ++c)
+    add_points(nw, c,
+               unit(bodies_.position0[nw.particle_b[c]] - bodies_.position0[nw.particle_a[c]]));
   // Interface contacts: normal across the cylinder's axis through the interface sphere.
   for (const auto& ic : specimen_.interfaces)
     for (Index c = 0; c < ic.net.contact_count(); ++c) {
-      const Index a = ic.net.particle_a[c], b = ic.net.particle_b[c];
-      const Vec3 axis = bodies_.orientation0[b] * Vec3::UnitZ();
-      const Vec3 d = bodies_.position0[a] - ic.anchor0[c];
-      const Vec3 n = unit(d - d.dot(axis) * axis);
-      for (Index m = ic.net.point_begin[c]; m < ic.net.point_begin[c + 1]; ++m) {
-        const LocalPointConstants& k = ic.net.constants[m];
-        blocks.add_spring(a, n, k.kn, k.ks, ic.net.point_position0[m] - bodies_.position0[a]);
-        blocks.add_spring(b, n, k.kn, k.ks, ic.net.point_position0[m] - bodies_.position0[b]);
-      }
+      const Vec3 axis = bodies_.orientation0[ic.net.particle_b[c]] * Vec3::UnitZ();
+      const Vec3 d = bodies_.position0[ic.net.particle_a[c]] - ic.anchor0[c];
+      add_points(ic.net, c, unit(d - d.dot(axis) * axis));
     }
   for (Index j = 0; j < plate_contacts_.size(); ++j) {
     const Index i = plate_contacts_.particle[j];
