@@ -59,4 +59,24 @@ with tempfile.TemporaryDirectory() as tmp:
     check(os.path.exists(os.path.join(out, "load_displacement.png")), "load_displacement.png written")
     check(not [f for f in os.listdir(out) if ".tmp." in f], "no temporary files left")
 
+    # Peak plus a defined post-peak (stop.post_peak_displacement): the same cube without its bar,
+    # compressed past its peak, stops 20 um past the peak's position (to within a step's travel),
+    # before its 1 mm displacement rule.
+    src = open(scenario).read()
+    bar = src.index("[bars.bar]")
+    src = src[:bar] + src[src.index("[plates.bottom]"):]
+    src = src.replace("steps = 3000", "post_peak_displacement = 2.0e-5\ndisplacement = 1.0e-3")
+    post = os.path.join(tmp, "post_peak.toml")
+    open(post, "w").write(src)
+    out = os.path.join(tmp, "post_peak")
+    r = subprocess.run([rcdem, "run", post, "-o", out], capture_output=True, text=True, timeout=600)
+    check(r.returncode == 0, f"post-peak run exits 0 ({r.stderr.strip()[-300:]})")
+    s = json.load(open(os.path.join(out, "summary.json")))
+    last = list(csv.DictReader(open(os.path.join(out, "history.csv"))))[-1]
+    past = abs(float(last["top_displacement_m"])) - abs(s["displacement_at_peak_m"])
+    travel = 0.5 * s["time_step_s"]  # the top plate's speed 0.5 m/s times one step
+    check(s["stop_reason"] == "post_peak_displacement" and 2.0e-5 <= past <= 2.0e-5 + 2 * travel,
+          f"stopped by post_peak_displacement {past * 1e6:.3f} um past the peak "
+          f"({s['stop_reason']})")
+
 checks.finish()

@@ -392,6 +392,7 @@ Scenario convert(Reader& r, const std::string& text) {
          r.at("loading.control_plate"), s.control_plate, s.control_plate);
   s.stop.displacement = r.real("stop.displacement");
   s.stop.load_drop = r.real("stop.load_drop");
+  s.stop.post_peak_displacement = r.real("stop.post_peak_displacement");
   s.stop.time = r.real("stop.time");
   s.stop.steps = r.integer("stop.steps");
   s.output.history_rows = r.integer("output.history_rows");

@@ -88,9 +88,12 @@ struct BarSettings {
 struct StopSettings {
   Real displacement = 0.0;
   Real load_drop = 0.0;
+  Real post_peak_displacement = 0.0;
   Real time = 0.0;
   std::int64_t steps = 0;
-  bool any() const { return displacement > 0 || load_drop > 0 || time > 0 || steps > 0; }
+  bool any() const {
+    return displacement > 0 || load_drop > 0 || post_peak_displacement > 0 || time > 0 || steps > 0;
+  }
 };
 
 struct OutputSettings {

@@ -178,6 +178,8 @@ Schema build() {
              "Stop when the control plate has moved this far."));
   s.key(real("stop.load_drop", 0.0, Range{0.0, 1.0, false, true}, "",
              "Stop once the load has fallen below this fraction of its peak, after the peak."));
+  s.key(real("stop.post_peak_displacement", 0.0, Range{0.0, kInf}, "m",
+             "Stop once the control plate has moved this far past the peak load's position."));
   s.key(real("stop.time", 0.0, Range{0.0, kInf}, "s", "Stop at this simulated time."));
   s.key(typed("stop.steps", KeyType::Integer, std::int64_t{0}, Range{0.0, 1.0e12},
               "Stop after this many steps."));

@@ -66,21 +66,27 @@ void validate_run(const Scenario& s) {
     fail("{}: a run needs plates: add at least one [plates.NAME] section with its face",
          s.source.string());
   if (!s.stop.any())
-    fail("{}: no stop rule: set stop.displacement, stop.load_drop, stop.time or stop.steps",
-         s.source.string());
-  const PlateSettings* control = find(s, s.control_plate);
-  if ((s.stop.displacement > 0.0 || s.stop.load_drop > 0.0) && !control && s.control_bar.empty())
     fail(
-        "{}: stop.displacement and stop.load_drop need loading.control_plate (or "
-        "loading.control_bar), the plate (or pulled bar) they refer to",
-        at(s, s.stop.displacement > 0.0 ? "stop.displacement" : "stop.load_drop"));
+        "{}: no stop rule: set stop.displacement, stop.load_drop, stop.post_peak_displacement, "
+        "stop.time or stop.steps",
+        s.source.string());
+  const PlateSettings* control = find(s, s.control_plate);
+  if ((s.stop.displacement > 0.0 || s.stop.load_drop > 0.0 || s.stop.post_peak_displacement > 0.0) &&
+      !control && s.control_bar.empty())
+    fail(
+        "{}: stop.displacement, stop.load_drop and stop.post_peak_displacement need "
+        "loading.control_plate (or loading.control_bar), the plate (or pulled bar) they refer to",
+        at(s, s.stop.displacement > 0.0 ? "stop.displacement"
+                                        : (s.stop.load_drop > 0.0 ? "stop.load_drop"
+                                                                  : "stop.post_peak_displacement")));
   bool moving = false;
   for (const auto& p : s.plates) moving |= p.velocity != 0.0;
   for (const auto& b : s.bars) moving |= b.pull_velocity > 0.0;
   if (!moving && s.stop.time <= 0.0 && s.stop.steps <= 0)
     fail(
-        "{}: no plate moves (every velocity is 0), so stop.displacement and stop.load_drop "
-        "can never trigger; set a plate's velocity, or stop.time or stop.steps",
+        "{}: no plate moves (every velocity is 0), so stop.displacement, stop.load_drop and "
+        "stop.post_peak_displacement can never trigger; set a plate's velocity, or stop.time or "
+        "stop.steps",
         s.source.string());
   if (s.stop.displacement > 0.0 && control && control->velocity == 0.0 && s.stop.time <= 0.0 &&
       s.stop.steps <= 0)
@@ -390,6 +396,13 @@ RunSummary run_scenario(const Scenario& sc, const fs::path& out, const RunOption
       if (sc.stop.load_drop > 0.0 && peak > 0.0 && load < sc.stop.load_drop * peak &&
           sim.ledger().damage > 0.0)
         r.stop_reason = "load_drop";
+      // Peak plus a defined post-peak (issue 5): the plate has gone this far past the peak's
+      // position, again only once the specimen has cracked.
+      if (sc.stop.post_peak_displacement > 0.0 && peak > 0.0 &&
+          std::abs(control_displacement()) - std::abs(r.displacement_at_peak) >=
+              sc.stop.post_peak_displacement &&
+          sim.ledger().damage > 0.0)
+        r.stop_reason = "post_peak_displacement";
       const auto now = std::chrono::steady_clock::now();
       if (!quiet && std::chrono::duration<double>(now - last_report).count() > (tty ? 0.5 : 10.0)) {
         last_report = now;
