@@ -18,8 +18,11 @@ struct PointSums {
 };
 
 // One local point of a contact, in the contact's frame (see evaluate_contacts): advances its
-// history by the law and returns what it adds to the contact's sums. (A full 8-lane pass with
-// idle lanes masked, instead of the compiler's 4-lane pass and scalar remainder, was 6% slower.)
+// history by the law and returns what it adds to the contact's sums. GCC vectorises the loop over
+// a contact's points for the EL law only; BL's branches keep it scalar, and that is the faster
+// form: a branch-free elastic pass in SIMD lanes (4 or 8) with a scalar pass for the points that
+// leave the elastic range was 7-9% slower (bench/RESULTS.md, session 5), as was a full 8-lane
+// pass with idle lanes masked for EL (6%).
 template <typename Law>
 struct PointUpdate {
   const Law& law;
@@ -66,7 +69,7 @@ struct PointUpdate {
 //
 // Everything per point is done in the contact's frame E = [n t1 t2] (right-handed: t2 = n x t1),
 // with matrices formed once per contact, so that a point costs two 3x3 products, the law and a
-// cross product, all on plain scalars the compiler runs in SIMD lanes over the contact's points:
+// cross product, all on plain scalars (in SIMD lanes for the EL law, see PointUpdate):
 //   relative displacement (SPEC 4, contact_kinematics.hpp): u_J = u0 + (R_B - R_A) r,
 //     r = p_J0 - x_A0, so in the frame E^T u_J = E^T u0 + (E^T (R_B - R_A)) r;
 //   force on B in the frame: phi = (-fn, fs1, fs2), the contact's force E sum(phi);

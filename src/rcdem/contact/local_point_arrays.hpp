@@ -1,7 +1,7 @@
 #pragma once
 // The histories of a network's local points as a structure of arrays (one array per quantity,
 // shear vectors as their two components in the contact's frame): the contact loop streams each
-// array once and its inner loop over a contact's points runs in SIMD lanes.
+// array once (its inner loop over a contact's points runs in SIMD lanes for the EL law).
 #include <array>
 #include <vector>
 
