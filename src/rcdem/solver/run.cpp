@@ -36,14 +36,14 @@
 namespace rcdem {
 
 namespace fs = std::filesystem;
+using io::Inputs;
 using io::iso_now;
 using io::Manifest;
 using io::read_text;
-using io::RunLock;
-using io::thread_count;
-using io::Inputs;
-using io::scenario_inputs;
 using io::remove_stale_temporaries;
+using io::RunLock;
+using io::scenario_inputs;
+using io::thread_count;
 
 namespace {
 
@@ -71,14 +71,15 @@ void validate_run(const Scenario& s) {
         "stop.time or stop.steps",
         s.source.string());
   const PlateSettings* control = find(s, s.control_plate);
-  if ((s.stop.displacement > 0.0 || s.stop.load_drop > 0.0 || s.stop.post_peak_displacement > 0.0) &&
+  if ((s.stop.displacement > 0.0 || s.stop.load_drop > 0.0 ||
+       s.stop.post_peak_displacement > 0.0) &&
       !control && s.control_bar.empty())
     fail(
         "{}: stop.displacement, stop.load_drop and stop.post_peak_displacement need "
         "loading.control_plate (or loading.control_bar), the plate (or pulled bar) they refer to",
-        at(s, s.stop.displacement > 0.0 ? "stop.displacement"
-                                        : (s.stop.load_drop > 0.0 ? "stop.load_drop"
-                                                                  : "stop.post_peak_displacement")));
+        at(s, s.stop.displacement > 0.0
+                  ? "stop.displacement"
+                  : (s.stop.load_drop > 0.0 ? "stop.load_drop" : "stop.post_peak_displacement")));
   bool moving = false;
   for (const auto& p : s.plates) moving |= p.velocity != 0.0;
   for (const auto& b : s.bars) moving |= b.pull_velocity > 0.0;
