@@ -23,9 +23,8 @@ MODELS = {  # name: (bars, diameter [m], f_y [Pa], P_exp [N]) from Table 3
 
 # Full study: the paper's particles; quick: twice the diameters (8x fewer particles, a 2x longer
 # step). Loading speeds: the rate study of docs/case-study.md. Full size also stops 1 mm past the
-# peak (issue 5's "peak plus a defined post-peak"): a brittle beam's plateau after it is then
-# shown over 1 mm instead of up to 1.8 mm; a ductile beam's load keeps rising, so its peak moves
-# with it and the 2 mm rule ends it as before.
+# peak (issue 5's "peak plus a defined post-peak"): it cuts only a plateau after the peak (AN1
+# then stops at 1.17 mm, AN2 at 1.6 mm), never a load that is still rising (AN3, AN4 run to 2 mm).
 FULL = dict(velocity=-0.05, ramp=4.0e-3, stop=0.002, post_peak=0.001, snapshots=10, coarsen=None, sub="")
 QUICK = dict(velocity=-0.1, ramp=4.0e-3, stop=0.0012, post_peak=None, snapshots=4, coarsen=2.0, sub="quick")
 D_AGG, D_MORTAR = (0.008, 0.012), (0.008, 0.009)  # diameters of the schema's defaults (SPEC 2)
