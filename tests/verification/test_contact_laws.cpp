@@ -63,7 +63,7 @@ struct Driver {
     const Vec3 fs0 = s.fs;
     const Real e0 = elastic_energy();
     const Real d0 = s.damage;
-    const LawResult r = law.update(c, s, dun, dus);
+    const LawResult r = law.update(c, s, s.un + dun, Vec3(s.us + dus));  // totals
     EXPECT_GE(s.damage, d0);
     EXPECT_EQ(r.damage_grew, s.damage > d0);
     EXPECT_GE(r.dissipated, 0.0);

@@ -2,8 +2,12 @@
 // The loop over contacts and their local points, written once for every law (the law is a
 // template parameter, chosen once per step). Each contact writes only its own outputs, so the
 // loop runs in parallel and the result does not depend on the thread count.
+#include <algorithm>
+#include <vector>
+
 #include "rcdem/contact/contact_kinematics.hpp"
 #include "rcdem/contact/contact_state.hpp"
+#include "rcdem/contact/elastic_condensation.hpp"
 #include "rcdem/core/parallel.hpp"
 #include "rcdem/state/bodies.hpp"
 #include "rcdem/state/contact_network.hpp"
@@ -15,6 +19,7 @@ struct PointSums {
   Real f_n = 0, f_1 = 0, f_2 = 0;  // force on B
   Real m_n = 0, m_1 = 0, m_2 = 0;  // its moment about A's centre
   Real damage = 0, friction = 0;   // dissipated this step
+  Real point_damage = 0;           // the point's D after the step
 };
 
 // One local point of a contact, in the contact's frame (see evaluate_contacts): advances its
@@ -41,10 +46,10 @@ struct PointUpdate {
     const Real u_1 = disp0.y() + disp(1, 0) * rx + disp(1, 1) * ry + disp(1, 2) * rz;
     const Real u_2 = disp0.z() + disp(2, 0) * rx + disp(2, 1) * ry + disp(2, 2) * rz;
     PlanePointState s = history.load(m);
-    const LawResult res =
-        law.update(constants[m], s, u_n - s.un, PlaneVec{u_1 - s.us.x, u_2 - s.us.y});  // (1)-(2)
+    const LawResult res = law.update(constants[m], s, u_n, PlaneVec{u_1, u_2});  // (1)-(2)
     history.store(m, s);
     PointSums out;
+    out.point_damage = s.damage;
     // On B; tension (fn > 0) pulls B back towards A.
     out.f_n = -s.fn;
     out.f_1 = s.fs.x;
@@ -62,10 +67,35 @@ struct PointUpdate {
   }
 };
 
+// What the evaluation of a network's contacts reads in one step.
+struct ContactInputs {
+  const ContactNetwork& net;
+  const Vec3* x;                    // body centres at the evaluation
+  const Vec3* x0;                   // at t = 0
+  const Vec3* w;                    // angular velocities
+  const Quat* q0;                   // orientations at t = 0
+  const Eigen::Matrix3d* rotation;  // orientations as matrices
+  const Vec3* anchor0;              // interface contacts only (below), else null
+  Real dt;
+};
+
 // With `anchor0` (steel-concrete interface contacts, SPEC 8), B is a cylinder and the normal is the
 // component of (x_A - anchor) perpendicular to the cylinder's current axis, pointing from A to the
 // axis, anchor being the interface sphere's centre carried by the cylinder: the sphere
 // discretisation then adds no artificial interlock along the bar.
+inline Vec3 contact_normal(const ContactInputs& in, Index a, Index b, Index c) {
+  if (in.anchor0) {
+    const Eigen::Matrix3d& rb = in.rotation[b];
+    const Vec3 axis = rb * (in.q0[b] * Vec3::UnitZ());
+    const Vec3 anchor = in.x[b] + rb * (in.anchor0[c] - in.x0[b]);
+    const Vec3 d = anchor - in.x[a];
+    return (d - d.dot(axis) * axis).normalized();
+  }
+  return (in.x[b] - in.x[a]).normalized();
+}
+
+// One contact through its points (kPointsOnly: only the points' histories and the frame, for
+// ElasticCondensation's catch-up; nothing the gather reads).
 //
 // Everything per point is done in the contact's frame E = [n t1 t2] (right-handed: t2 = n x t1),
 // with matrices formed once per contact, so that a point costs two 3x3 products, the law and a
@@ -76,76 +106,154 @@ struct PointUpdate {
 //   the point's position relative to A's centre, x_A + R_A r + u_J / 2 - x_A, in the frame
 //     rho = E^T u0 / 2 + (E^T (R_A + (R_B - R_A) / 2)) r, and the moment about A
 //     sum (E rho) x (E phi) = E sum(rho x phi) (E is a rotation).
+// The frame turns with the contact (SPEC 4), carrying the points' shear histories, except while
+// every point of the contact is intact: their forces are then independent of the frame
+// (kn u_n, -ks u_s), so it is any axis across n, as ElasticCondensation's catch-up draws it.
+template <typename Law, bool kPointsOnly = false>
+[[gnu::always_inline]] inline void evaluate_contact(const Law& law, const ContactInputs& in,
+                                                    ContactState& cs, ElasticCondensation* cond,
+                                                    Index c) {
+  const ContactNetwork& net = in.net;
+  const Index a = net.particle_a[c];
+  const Index b = net.particle_b[c];
+  const Vec3 n = contact_normal(in, a, b, c);
+  const bool intact = cond && cond->intact[c];
+  Vec3 t1;
+  if (intact) {
+    t1 = any_perpendicular(n);
+  } else {
+    // SPEC 4: the plane's frame turns with the contact, carrying every point's shear history.
+    const PlaneRotation rot{cs.normal[c], n, 0.5 * in.dt * (in.w[a] + in.w[b]).dot(n)};
+    t1 = rot.turn_frame_axis(cs.tangent[c]);
+    if (!(t1.squaredNorm() > 0.5)) t1 = any_perpendicular(n);  // only after a turn near 90 deg
+  }
+  cs.normal[c] = n;
+  cs.tangent[c] = t1;
+  const Vec3 t2 = n.cross(t1);
+  Eigen::Matrix3d frame_t;  // E^T: rows n, t1, t2
+  frame_t.row(0) = n.transpose();
+  frame_t.row(1) = t1.transpose();
+  frame_t.row(2) = t2.transpose();
+  const Eigen::Matrix3d& ra = in.rotation[a];
+  const Eigen::Matrix3d& rb = in.rotation[b];
+  const Vec3 dx = in.x[b] - in.x[a];
+  const Vec3 u0 = dx - rb * (in.x0[b] - in.x0[a]);  // small differences only: full precision
+  const Eigen::Matrix3d disp = frame_t * (rb - ra);
+  const Vec3 disp0 = frame_t * u0;
+  const Eigen::Matrix3d arm = frame_t * (0.5 * (ra + rb));
+  Real phi_n = 0.0, phi_1 = 0.0, phi_2 = 0.0, mom_n = 0.0, mom_1 = 0.0, mom_2 = 0.0;
+  Real damage = 0.0, friction = 0.0, max_damage = 0.0;
+  const PointUpdate<Law> point{law,
+                               net.point_position0.data(),
+                               net.constants.data(),
+                               cs.point.pointers(),
+                               in.x0[a],
+                               disp0,
+                               disp,
+                               arm};
+  const Index begin = net.point_begin[c], end = net.point_begin[c + 1];
+#pragma omp simd reduction(+ : phi_n, phi_1, phi_2, mom_n, mom_1, mom_2, damage, friction) \
+    reduction(max : max_damage)
+  for (Index m = begin; m < end; ++m) {
+    const PointSums o = point(m);
+    phi_n += o.f_n;
+    phi_1 += o.f_1;
+    phi_2 += o.f_2;
+    mom_n += o.m_n;
+    mom_1 += o.m_1;
+    mom_2 += o.m_2;
+    damage += o.damage;
+    friction += o.friction;
+    max_damage = std::max(max_damage, o.point_damage);
+  }
+  if constexpr (kPointsOnly) return;
+  if (intact && max_damage > 0) cond->intact[c] = 0;
+  const Vec3 f = phi_n * n + phi_1 * t1 + phi_2 * t2;
+  const Vec3 moment_a = mom_n * n + mom_1 * t1 + mom_2 * t2;
+  cs.force_b[c] = f;
+  cs.torque_b[c] = moment_a - dx.cross(f);
+  cs.torque_a[c] = -moment_a;
+  cs.dissipated_damage[c] = damage;
+  cs.dissipated_friction[c] = friction;
+}
+
+// The loop over a network's contacts. With `cond` (the concrete network under BL), an intact
+// contact whose points stay below their limits is evaluated from its sums
+// (elastic_condensation.hpp) and flagged; the rest go through their points.
 //
-// `rotation`, if given, holds every body's orientation as a matrix (Simulation forms them once
-// per step: a body has about 13 contact ends, and two quaternion-to-matrix conversions were a
-// tenth of a contact's cost).
+// `previous` (with `cond`): the last evaluation's kinematics. A contact condensed then and visited
+// now first has its points brought up to that step, so that the law sees the history it would
+// have had (the dissipation of a point's first inelastic step reads its previous forces).
+template <typename Law>
+void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs,
+                       ElasticCondensation* cond = nullptr,
+                       const ContactInputs* previous = nullptr) {
+  if (cond) cond->any_condensed = true;  // cleared by the catch-up; harmless if none was
+  parallel_for(in.net.contact_count(), [&](Index c) {
+    if (cond) {
+      const bool was_condensed = cond->condensed[c];
+      cond->condensed[c] = 0;
+      if (cond->intact[c]) {
+        const Index a = in.net.particle_a[c], b = in.net.particle_b[c];
+        const Vec3 n = contact_normal(in, a, b, c);
+        const Vec3 dx = in.x[b] - in.x[a];
+        const Eigen::Matrix3d& ra = in.rotation[a];
+        const Eigen::Matrix3d& rb = in.rotation[b];
+        const Vec3 u0 = dx - rb * (in.x0[b] - in.x0[a]);
+        CondensedResult r;
+        if (evaluate_condensed(cond->sums[c], n, dx, u0, ra, rb, r)) {
+          cond->condensed[c] = 1;
+          cs.force_b[c] = r.force_b;
+          cs.torque_b[c] = r.torque_b;
+          cs.torque_a[c] = r.torque_a;
+          cs.dissipated_damage[c] = 0.0;
+          cs.dissipated_friction[c] = 0.0;
+          return;
+        }
+      }
+      if (was_condensed) evaluate_contact<Law, true>(law, *previous, cs, cond, c);
+    }
+    evaluate_contact(law, in, cs, cond, c);
+  });
+}
+
+// The same from the bodies' state. `rotation`: every body's orientation as a matrix (Simulation
+// forms them once per step: a body has about 13 contact ends, and two quaternion-to-matrix
+// conversions were a tenth of a contact's cost); formed here when not given (tests).
 template <typename Law>
 void evaluate_contacts(const Law& law, const ContactNetwork& net, const Bodies& bodies,
                        ContactState& cs, Real dt, const Vec3* anchor0 = nullptr,
                        const Eigen::Matrix3d* rotation = nullptr) {
-  const Vec3* x = bodies.position.data();
-  const Vec3* x0 = bodies.position0.data();
-  const Vec3* w = bodies.angular_velocity.data();
-  const Quat* q = bodies.orientation.data();
-  const Vec3* p0 = net.point_position0.data();
-  const LocalPointConstants* constants = net.constants.data();
-  const LocalPointPointers history = cs.point.pointers();
-  parallel_for(net.contact_count(), [&](Index c) {
-    const Index a = net.particle_a[c];
-    const Index b = net.particle_b[c];
-    Vec3 n;
-    if (anchor0) {
-      const Vec3 axis = q[b] * (bodies.orientation0[b] * Vec3::UnitZ());
-      const Vec3 anchor = x[b] + q[b] * (anchor0[c] - x0[b]);
-      const Vec3 d = anchor - x[a];
-      n = (d - d.dot(axis) * axis).normalized();
-    } else {
-      n = (x[b] - x[a]).normalized();
-    }
-    // SPEC 4: the plane's frame turns with the contact, carrying every point's shear history.
-    const PlaneRotation rot{cs.normal[c], n, 0.5 * dt * (w[a] + w[b]).dot(n)};
-    cs.normal[c] = n;
-    Vec3 t1 = rot.turn_frame_axis(cs.tangent[c]);
-    if (!(t1.squaredNorm() > 0.5)) t1 = any_perpendicular(n);  // only after a turn near 90 deg
-    cs.tangent[c] = t1;
-    const Vec3 t2 = n.cross(t1);
-    Eigen::Matrix3d frame_t;  // E^T: rows n, t1, t2
-    frame_t.row(0) = n.transpose();
-    frame_t.row(1) = t1.transpose();
-    frame_t.row(2) = t2.transpose();
-    const Eigen::Matrix3d ra = rotation ? rotation[a] : q[a].toRotationMatrix();
-    const Eigen::Matrix3d rb = rotation ? rotation[b] : q[b].toRotationMatrix();
-    const Vec3 dx = x[b] - x[a];
-    const Vec3 u0 = dx - rb * (x0[b] - x0[a]);  // small differences only: full precision anywhere
-    const Eigen::Matrix3d disp = frame_t * (rb - ra);
-    const Vec3 disp0 = frame_t * u0;
-    const Eigen::Matrix3d arm = frame_t * (0.5 * (ra + rb));
-    const Vec3 xa0 = x0[a];
-    Real phi_n = 0.0, phi_1 = 0.0, phi_2 = 0.0, mom_n = 0.0, mom_1 = 0.0, mom_2 = 0.0;
-    Real damage = 0.0, friction = 0.0;
-    const PointUpdate<Law> point{law, p0, constants, history, xa0, disp0, disp, arm};
-    const Index begin = net.point_begin[c], end = net.point_begin[c + 1];
-#pragma omp simd reduction(+ : phi_n, phi_1, phi_2, mom_n, mom_1, mom_2, damage, friction)
-    for (Index m = begin; m < end; ++m) {
-      const PointSums o = point(m);
-      phi_n += o.f_n;
-      phi_1 += o.f_1;
-      phi_2 += o.f_2;
-      mom_n += o.m_n;
-      mom_1 += o.m_1;
-      mom_2 += o.m_2;
-      damage += o.damage;
-      friction += o.friction;
-    }
-    const Vec3 f = phi_n * n + phi_1 * t1 + phi_2 * t2;
-    const Vec3 moment_a = mom_n * n + mom_1 * t1 + mom_2 * t2;
-    cs.force_b[c] = f;
-    cs.torque_b[c] = moment_a - dx.cross(f);
-    cs.torque_a[c] = -moment_a;
-    cs.dissipated_damage[c] = damage;
-    cs.dissipated_friction[c] = friction;
+  std::vector<Eigen::Matrix3d> formed;
+  if (!rotation) {
+    formed.reserve(bodies.orientation.size());
+    for (const Quat& q : bodies.orientation) formed.push_back(q.toRotationMatrix());
+    rotation = formed.data();
+  }
+  const ContactInputs in{net,
+                         bodies.position.data(),
+                         bodies.position0.data(),
+                         bodies.angular_velocity.data(),
+                         bodies.orientation0.data(),
+                         rotation,
+                         anchor0,
+                         dt};
+  evaluate_contacts(law, in, cs);
+}
+
+// Brings the histories of the contacts condensed at the last evaluation up to date, from that
+// evaluation's kinematics (`in`): what the point loop would have stored (the law's elastic update:
+// un, us, fn = kn un, fs = -ks us, their maxima). Changes nothing the next steps compute.
+template <typename Law>
+void catch_up_condensed(const Law& law, const ContactInputs& in, ContactState& cs,
+                        ElasticCondensation& cond) {
+  if (!cond.any_condensed) return;
+  parallel_for(in.net.contact_count(), [&](Index c) {
+    if (!cond.condensed[c]) return;
+    evaluate_contact<Law, true>(law, in, cs, &cond, c);
+    cond.condensed[c] = 0;
   });
+  cond.any_condensed = false;
 }
 
 }  // namespace rcdem

@@ -505,11 +505,20 @@ struct CheckpointAccess {
 
   template <typename Ar>
   static void save_parts(Ar& ar, const CheckpointParts& p) {
+    // Condensed contacts' histories as if visited (elastic_condensation.hpp): what the file holds
+    // does not depend on the condensation, and a restart needs no kinematics of the last step.
+    p.sim->catch_up_condensed_points();
     simulation(ar, static_cast<const Simulation&>(*p.sim));
     if (p.history) history(ar, static_cast<const History&>(*p.history));
     if (p.snapshots) snapshots(ar, static_cast<const SnapshotWriter&>(*p.snapshots));
     if (p.cracks) cracks(ar, static_cast<const CrackRecord&>(*p.cracks));
     if (p.loop) loop(ar, static_cast<const LoopState&>(*p.loop));
+  }
+  // After the state is in: which contacts are intact follows from the points' damage, and none is
+  // condensed (their histories were complete when saved).
+  static void after_restore(Simulation& s) {
+    if (!s.condensation_.sums.empty())
+      s.condensation_.reset_flags(s.specimen_.contacts, s.contacts_.point.damage);
   }
   template <typename Ar>
   static void load_parts(Ar& ar, const CheckpointParts& p) {
@@ -749,6 +758,7 @@ CheckpointHeader restore_checkpoint(const fs::path& file, const CheckpointParts&
     CheckpointAccess::load_parts(check, parts);
     Loader apply(f, true);
     CheckpointAccess::load_parts(apply, parts);
+    CheckpointAccess::after_restore(*parts.sim);
     return f.header;
   } catch (const Reject& r) {
     throw Error(rejected(file, r.reason));

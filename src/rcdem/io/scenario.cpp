@@ -303,6 +303,7 @@ Scenario convert(Reader& r, const std::string& text) {
   s.solver.bar_rotational_inertia_scaling = r.real("solver.bar_rotational_inertia_scaling");
   s.solver.particle_rotational_inertia_scaling =
       r.real("solver.particle_rotational_inertia_scaling");
+  s.solver.condense_elastic_contacts = r.boolean("solver.condense_elastic_contacts");
   for (const auto& inst : r.instances["plates.*"]) {
     PlateSettings p;
     p.name = inst.substr(inst.find('.') + 1);

@@ -57,6 +57,7 @@ struct SolverSettings {
   Real mass_scaling = 1.0;
   Real bar_rotational_inertia_scaling = 1.0;       // the cylinders' moments of inertia only
   Real particle_rotational_inertia_scaling = 1.0;  // the particles' moments of inertia only
+  bool condense_elastic_contacts = true;  // contact/elastic_condensation.hpp
 };
 
 struct PlateSettings {

@@ -141,6 +141,11 @@ Schema build() {
              "Multiply the particles' moments of inertia (2/5 m r^2) by this: their rotation, not "
              "their translation, sets the time step (1.46x shorter in the case study), and a "
              "quasi-static result does not depend on it."));
+  s.key(typed("solver.condense_elastic_contacts", KeyType::Boolean, true, Range{},
+              "Evaluate a concrete contact whose local points are all intact and stay below "
+              "their elastic limits from its sums (the same force and moment as its points give, "
+              "to rounding) instead of visiting its points: faster, same results. false: visit "
+              "every point every step."));
 
   s.section("plates", "Rigid plates: one [plates.NAME] table per plate, NAME of your choice.");
   s.section("plates.*",

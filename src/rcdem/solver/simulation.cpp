@@ -80,6 +80,8 @@ Simulation::Simulation(const Scenario& sc, Specimen specimen)
     interface_bl_.push_back(BilinearSoftening{p.sigma_nt, p.tau, p.G_fn, p.G_fs, p.mu_c});
   }
   contacts_.init(specimen_.contacts, bodies_.position);
+  if (sc.solver.condense_elastic_contacts && law_kind_ == ConcreteLaw::BilinearSoftening)
+    condensation_ = ElasticCondensation::build(specimen_.contacts, bodies_.position0);
   body_contacts_ = BodyContacts::build(specimen_.contacts, bodies_.size());
   plates_ = make_plates(sc.plates, specimen_.geometry);
   plate_contacts_ = make_plate_contacts(plates_, specimen_.boundary, bodies_, sc.contact);
@@ -90,6 +92,9 @@ Simulation::Simulation(const Scenario& sc, Specimen specimen)
   body_kinetic_.assign(n, 0.0);
   body_jumped_.assign(n, 0);
   rotation_.assign(n, Eigen::Matrix3d::Identity());
+  rotation_prev_ = rotation_;
+  position_eval_ = bodies_.position;
+  position_prev_ = bodies_.position;
   compute_stable_time_step();
   dt_ = sc.solver.dt_safety * stable_dt_;
   if (sc.solver.time_step > 0.0) {
@@ -164,6 +169,26 @@ void Simulation::compute_stable_time_step() {
   stable_dt_ = dt;
 }
 
+ContactInputs Simulation::concrete_inputs(const std::vector<Vec3>& positions,
+                                          const std::vector<Eigen::Matrix3d>& rotation) const {
+  return {specimen_.contacts,
+          positions.data(),
+          bodies_.position0.data(),
+          bodies_.angular_velocity.data(),
+          bodies_.orientation0.data(),
+          rotation.data(),
+          nullptr,
+          dt_};
+}
+
+void Simulation::catch_up_condensed_points() const {
+  // The last evaluation's kinematics: its centres and orientation matrices, both kept until the
+  // next step forms them anew.
+  if (condensation_.any_condensed)
+    catch_up_condensed(bilinear_, concrete_inputs(position_eval_, rotation_), contacts_,
+                       condensation_);
+}
+
 Real PulledBar::velocity_at(Real t) const {
   if (ramp_time <= 0.0 || t >= ramp_time) return speed;
   return speed * 0.5 * (1.0 - std::cos(kPi * t / ramp_time));
@@ -184,13 +209,22 @@ const Plate* Simulation::find_plate(const std::string& name) const {
 void Simulation::step() {
   // 1. Contacts at the current positions (the law picked once for the whole loop).
   ContactNetwork& net = specimen_.contacts;
-  parallel_for(bodies_.size(),
-               [&](Index i) { rotation_[i] = bodies_.orientation[i].toRotationMatrix(); });
+  // The last evaluation's kinematics stay at hand: a contact condensed then and visited now first
+  // has its points brought up to that step (contact_loop.hpp, evaluate_contacts).
+  std::swap(rotation_, rotation_prev_);
+  std::swap(position_eval_, position_prev_);
+  parallel_for(bodies_.size(), [&](Index i) {
+    rotation_[i] = bodies_.orientation[i].toRotationMatrix();
+    position_eval_[i] = bodies_.position[i];
+  });
   const Eigen::Matrix3d* rot = rotation_.data();
+  const ContactInputs concrete = concrete_inputs(bodies_.position, rotation_);
+  const ContactInputs previous = concrete_inputs(position_prev_, rotation_prev_);
   if (law_kind_ == ConcreteLaw::BilinearSoftening)
-    evaluate_contacts(bilinear_, net, bodies_, contacts_, dt_, nullptr, rot);
+    evaluate_contacts(bilinear_, concrete, contacts_,
+                      condensation_.sums.empty() ? nullptr : &condensation_, &previous);
   else
-    evaluate_contacts(elastic_, net, bodies_, contacts_, dt_, nullptr, rot);
+    evaluate_contacts(elastic_, concrete, contacts_);
   // Steel-concrete interfaces, bar by bar with its law; interaction nodes.
   for (std::size_t k = 0; k < interface_states_.size(); ++k) {
     const InterfaceContacts& ic = specimen_.interfaces[k];
@@ -381,7 +415,7 @@ Real points_strain_energy(const ContactNetwork& net, const ContactState& cs) {
 }  // namespace
 
 Real Simulation::strain_energy() const {
-  Real strain = points_strain_energy(specimen_.contacts, contacts_);
+  Real strain = points_strain_energy(specimen_.contacts, contacts());
   for (Index j = 0; j < plate_contacts_.size(); ++j) strain += plate_contacts_.strain_energy[j];
   for (std::size_t k = 0; k < interface_states_.size(); ++k)
     strain += points_strain_energy(specimen_.interfaces[k].net, interface_states_[k]);

@@ -4,7 +4,9 @@
 // and the energy ledger. Stop rules, history and snapshots live in the run loop (run.hpp).
 #include <vector>
 
+#include "rcdem/contact/contact_loop.hpp"
 #include "rcdem/contact/contact_state.hpp"
+#include "rcdem/contact/elastic_condensation.hpp"
 #include "rcdem/contact/laws/bilinear_softening.hpp"
 #include "rcdem/contact/laws/elastic.hpp"
 #include "rcdem/io/scenario.hpp"
@@ -56,8 +58,22 @@ class Simulation {
   const Specimen& specimen() const { return specimen_; }
   Bodies& bodies() { return bodies_; }
   const Bodies& bodies() const { return bodies_; }
-  const ContactState& contacts() const { return contacts_; }
-  ContactState& contacts() { return contacts_; }
+  // The concrete contacts' state. Reading it first brings the histories of contacts evaluated from
+  // their sums up to date (contact/elastic_condensation.hpp): the points read as if every one had
+  // been visited every step.
+  const ContactState& contacts() const {
+    catch_up_condensed_points();
+    return contacts_;
+  }
+  ContactState& contacts() {
+    catch_up_condensed_points();
+    return contacts_;
+  }
+  // Concrete contacts evaluated from their sums at the last step (0 when condensation is off,
+  // and after a read of the state above has brought their points up to date).
+  Index condensed_contacts() const { return condensation_.condensed_count(); }
+  // Brings condensed contacts' point histories up to the last step (contacts() does it).
+  void catch_up_condensed_points() const;
   std::vector<Plate>& plates() { return plates_; }
   const std::vector<Plate>& plates() const { return plates_; }
   const PlateContacts& plate_contacts() const { return plate_contacts_; }
@@ -96,12 +112,18 @@ class Simulation {
  private:
   friend struct io::CheckpointAccess;
   void compute_stable_time_step();
+  ContactInputs concrete_inputs(const std::vector<Vec3>& positions,
+                                const std::vector<Eigen::Matrix3d>& rotation) const;
   void gather_forces();
   void integrate();
 
   Specimen specimen_;
   Bodies bodies_;
-  ContactState contacts_;
+  // Mutable: condensed contacts' point histories are filled in when first read (logically const).
+  mutable ContactState contacts_;
+  mutable ElasticCondensation condensation_;  // empty when off or for the EL law
+  // The bodies' centres at the last evaluation and the one before (with rotation_prev_).
+  std::vector<Vec3> position_eval_, position_prev_;
   BodyContacts body_contacts_;
   std::vector<Plate> plates_;
   PlateContacts plate_contacts_;
@@ -129,7 +151,7 @@ class Simulation {
   std::vector<std::uint8_t> body_jumped_;
   // Every body's orientation as a matrix, formed at the start of each step for the contact loops
   // (derived from the orientations: not part of a checkpoint).
-  std::vector<Eigen::Matrix3d> rotation_;
+  std::vector<Eigen::Matrix3d> rotation_, rotation_prev_;
 };
 
 }  // namespace rcdem

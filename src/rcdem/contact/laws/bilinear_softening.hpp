@@ -34,20 +34,27 @@ struct BilinearSoftening {
   Real u_nu() const { return 2 * G_fn / sigma_nt; }
   Real u_su() const { return 2 * G_fs / tau; }
 
-  // Advances the point by the relative displacement increments (SPEC 4): dun along n (opening
-  // positive) and dus in the current contact plane. The caller has already rotated s.fs and s.us
-  // into that plane. Requires c.kn > 0 and c.ks > 0.
+  // Advances the point to the accumulated relative displacement u_n along n (opening positive)
+  // and u_s in the current contact plane (SPEC 4; the increments of the step are u - s.u). The
+  // caller has already rotated s.fs and s.us into that plane. Requires c.kn > 0 and c.ks > 0.
   // V: Vec3, or PlaneVec (frame components) in the contact loop.
   template <typename V>
   [[gnu::always_inline]] LawResult update(const LocalPointConstants& c, BasicPointState<V>& s,
-                                          Real dun, const V& dus) const {
+                                          Real u_n, const V& u_s) const {
     const Real fn_old = s.fn;
     const V fs_old = s.fs;
-    s.un += dun;
-    s.us += dus;
-    // (1)-(2) in tension-positive form: fs resists the slip of B relative to A.
-    const Real fn_trial = fn_old + c.kn * dun;
-    const V fs_trial = fs_old - c.ks * dus;
+    const Real dun = u_n - s.un;
+    const V dus = u_s - s.us;
+    s.un = u_n;
+    s.us = u_s;
+    // (1)-(2) in tension-positive form: fs resists the slip of B relative to A. A point that has
+    // never left the elastic range (D = 0) holds exactly fn = kn un and fs = -ks us, so its trial
+    // forces are taken from the accumulated displacement: the same numbers as the increments'
+    // sum, but independent of how the stored history was rounded, which lets the contact loop
+    // skip such points' histories altogether (contact/elastic_condensation.hpp).
+    const bool intact = s.damage == 0;
+    const Real fn_trial = intact ? c.kn * u_n : fn_old + c.kn * dun;
+    const V fs_trial = intact ? V(-c.ks * u_s) : V(fs_old - c.ks * dus);
 
     // The elastic path, which most points take most steps, needs no square root and no division:
     // limits are compared as kn u_max > F_max and on squared lengths.
@@ -60,7 +67,7 @@ struct BilinearSoftening {
       const Real d_n = past_n ? softening_damage(s.un_max, c.fn_max / c.kn, u_nu()) : 0;  // (S3)
       const Real d_s =
           past_s ? softening_damage(std::sqrt(s.us_max_sq), c.c_max / c.ks, u_su()) : 0;  // (S3)
-      d = std::max(d, std::min<Real>(1, d_n + d_s));                                       // (S4)
+      d = std::max(d, std::min<Real>(1, d_n + d_s));                                      // (S4)
     }
 
     LawResult r;

@@ -12,9 +12,11 @@ struct Elastic {
   // Same contract as BilinearSoftening::update; never dissipates.
   template <typename V>
   [[gnu::always_inline]] LawResult update(const LocalPointConstants& c, BasicPointState<V>& s,
-                                          Real dun, const V& dus) const {
-    s.un += dun;
-    s.us += dus;
+                                          Real u_n, const V& u_s) const {
+    const Real dun = u_n - s.un;
+    const V dus = u_s - s.us;
+    s.un = u_n;
+    s.us = u_s;
     s.un_max = std::max(s.un_max, s.un);
     s.us_max_sq = std::max(s.us_max_sq, s.us.squaredNorm());
     s.fn += c.kn * dun;  // (1), tension positive

@@ -33,13 +33,13 @@ struct PlaneVec {
 // back and fs opposes B's slip relative to A. V: Vec3, or PlaneVec in the contact loop.
 template <typename V>
 struct BasicPointState {
-  Real fn = 0;           // normal force [N], tension positive
-  V fs = V::Zero();      // shear force [N], in the contact plane
-  Real un = 0;           // accumulated normal displacement [m], opening positive
-  V us = V::Zero();      // accumulated shear displacement [m], in the contact plane
-  Real un_max = 0;       // historical maximum of un (>= 0), drives D_n (S3)
-  Real us_max_sq = 0;    // historical maximum of |us|^2 (squared: no root per step), drives D_s (S3)
-  Real damage = 0;       // D in [0, 1], never decreasing (S4)
+  Real fn = 0;         // normal force [N], tension positive
+  V fs = V::Zero();    // shear force [N], in the contact plane
+  Real un = 0;         // accumulated normal displacement [m], opening positive
+  V us = V::Zero();    // accumulated shear displacement [m], in the contact plane
+  Real un_max = 0;     // historical maximum of un (>= 0), drives D_n (S3)
+  Real us_max_sq = 0;  // historical maximum of |us|^2 (squared: no root per step), drives D_s (S3)
+  Real damage = 0;     // D in [0, 1], never decreasing (S4)
 };
 using LocalPointState = BasicPointState<Vec3>;
 using PlanePointState = BasicPointState<PlaneVec>;
