@@ -6,8 +6,10 @@
 //   with steady_clock. Stop rules, history and snapshots are not involved (this is the step alone).
 // Prints one line of key=value pairs (scenario, threads, bodies, contacts, local_points, steps,
 // seconds, steps_per_s, particle_steps_per_s, contact_steps_per_s, local_point_steps_per_s,
-// bytes_per_step, bytes_per_local_point, achieved_GBps) and a second line starting "# bytes:" with
-// the breakdown of bytes_per_step (see bytes_per_step() below for the model and every term).
+// bytes_per_step, bytes_per_local_point, achieved_GBps, condensed_contacts: those evaluated from
+// their sums at the last step, contact/elastic_condensation.hpp) and a second line starting
+// "# bytes:" with the breakdown of bytes_per_step (see bytes_per_step() below for the model and
+// every term).
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
@@ -65,7 +67,8 @@ using rcdem::Vec3;
 //   integrate:    velocity, angular_velocity, angular_momentum, position  4 Vec3 read + write 192
 //                 orientation Quat read + write 64; orientation0 Quat read 32
 //                 force, torque, inertia  3 Vec3 read 72; mass Real read 8; radius Real read 8
-//                 driven  int64 read 8; damping_work, kinetic  2 Real write 16; jumped  uint8 write 1
+//                 driven  int64 read 8; damping_work, kinetic  2 Real write 16; jumped  uint8 write
+//                 1
 //   instability check: jumped read 1
 //   energy ledger: damping_work, kinetic  2 Real read 16
 //                                                           = 578
@@ -86,12 +89,15 @@ using rcdem::Vec3;
 //   A's and B's position + orientation r 112; gather: NodeRef r, NodeForces r, A's and B's
 //   force + torque r+w 192; energy: InteractionNode r, NodeState r, NodeForces.dissipated r 8.
 struct ByteCount {
-  double per_local_point = 0, per_contact = 0, per_body = 0, per_plate_contact = 0,
-         per_interface_contact = 0, per_node = 0;
-  double local_points = 0, contacts = 0, bodies = 0, plate_contacts = 0, interface_contacts = 0,
-         interface_points = 0, nodes = 0;
-  double points_total() const { return per_local_point * local_points; }
-  double contacts_total() const { return per_contact * contacts; }
+  double per_local_point = 0, per_contact = 0, per_condensed_contact = 0, per_body = 0,
+         per_plate_contact = 0, per_interface_contact = 0, per_node = 0;
+  double local_points = 0, contacts = 0, condensed_contacts = 0, visited_points = 0, bodies = 0,
+         plate_contacts = 0, interface_contacts = 0, interface_points = 0, nodes = 0;
+  double points_total() const { return per_local_point * visited_points; }
+  double contacts_total() const {
+    return per_contact * (contacts - condensed_contacts) +
+           per_condensed_contact * condensed_contacts;
+  }
   double bodies_total() const { return per_body * bodies; }
   double plates_total() const { return per_plate_contact * plate_contacts; }
   double interfaces_total() const {
@@ -107,21 +113,25 @@ struct ByteCount {
 ByteCount count_bytes(const rcdem::Simulation& sim) {
   constexpr double V = sizeof(Vec3), Q = sizeof(Quat), R = sizeof(Real), I = sizeof(Index);
   constexpr double LPS = sizeof(rcdem::LocalPointState);  // plate contacts' state
-  constexpr double PTS = 9 * R;                            // LocalPointArrays, per point
+  constexpr double PTS = 9 * R;                           // LocalPointArrays, per point
   constexpr double LPC = sizeof(rcdem::LocalPointConstants);
   ByteCount b;
   b.per_local_point = V + LPC + 2 * PTS;
   b.per_contact = (2 * I + I + 2 * 2 * V + 3 * V + 2 * R)  // contact loop
-                  + (2 * I + 3 * V)  // gather: CSR entries, force and torques
-                  + 2 * R;           // energy ledger
-  b.per_body = (3 * V + Q)                                                    // contact loop
-               + (I + 2 * V)                                                  // gather
+                  + (2 * I + 3 * V)                        // gather: CSR entries, force and torques
+                  + 2 * R;                                 // energy ledger
+  // A condensed contact (contact/elastic_condensation.hpp) reads its sums and two flags instead of
+  // its points, and leaves its frame (normal, tangent: read + written) alone.
+  b.per_condensed_contact =
+      b.per_contact - 2 * 2 * V + sizeof(rcdem::CondensedContact) + 2 * sizeof(std::uint8_t);
+  b.per_body = (3 * V + Q)    // contact loop
+               + (I + 2 * V)  // gather
                + (4 * 2 * V + 2 * Q + Q + 3 * V + 2 * R + sizeof(std::int64_t) + 2 * R +
-                  sizeof(std::uint8_t))                                       // integrate
-               + sizeof(std::uint8_t)                                         // instability check
-               + 2 * R;                                                       // energy ledger
+                  sizeof(std::uint8_t))  // integrate
+               + sizeof(std::uint8_t)    // instability check
+               + 2 * R;                  // energy ledger
   b.per_plate_contact = (sizeof(int) + I + V + LPC + 2 * LPS + 2 * V + 2 * R +
-                         2 * sizeof(std::uint8_t) + 2 * V + Q)  // evaluate
+                         2 * sizeof(std::uint8_t) + 2 * V + Q)      // evaluate
                         + (sizeof(int) + V + sizeof(std::uint8_t))  // reaction sum
                         + (I + 2 * V + 2 * 2 * V)                   // gather
                         + 2 * R;                                    // energy ledger
@@ -138,6 +148,9 @@ ByteCount count_bytes(const rcdem::Simulation& sim) {
   const rcdem::Specimen& sp = sim.specimen();
   b.local_points = static_cast<double>(sp.contacts.point_count());
   b.contacts = static_cast<double>(sp.contacts.contact_count());
+  // As the last step left them (the count changes slowly over a run).
+  b.condensed_contacts = static_cast<double>(sim.condensed_contacts());
+  b.visited_points = b.local_points - static_cast<double>(sim.condensed_points());
   b.bodies = static_cast<double>(sim.bodies().size());
   b.plate_contacts = static_cast<double>(sim.plate_contacts().size());
   for (const auto& ic : sp.interfaces) {
@@ -191,14 +204,17 @@ int main(int argc, char** argv) {
         "scenario=%s threads=%d bodies=%.0f contacts=%.0f local_points=%.0f steps=%ld "
         "seconds=%.4f steps_per_s=%.3f particle_steps_per_s=%.4g contact_steps_per_s=%.4g "
         "local_point_steps_per_s=%.4g bytes_per_step=%.0f bytes_per_local_point=%.1f "
-        "achieved_GBps=%.3f setup_seconds=%.2f\n",
+        "achieved_GBps=%.3f setup_seconds=%.2f condensed_contacts=%.0f\n",
         path.c_str(), threads, bodies, contacts, points, steps, seconds, rate, rate * bodies,
-        rate * contacts, rate * points, bytes, bytes / points, bytes * rate * 1e-9, setup_s);
+        rate * contacts, rate * points, bytes, bytes / points, bytes * rate * 1e-9, setup_s,
+        bc.condensed_contacts);
     std::printf(
-        "# bytes: per_local_point=%.0f x %.0f = %.4g; per_contact=%.0f x %.0f = %.4g; "
+        "# bytes: per_local_point=%.0f x %.0f visited = %.4g; per_contact=%.0f x %.0f + "
+        "condensed %.0f x %.0f = %.4g; "
         "per_body=%.0f x %.0f = %.4g; plates=%.0f x %.0f = %.4g; interfaces=%.0f x %.0f "
         "+ %.0f x %.0f points = %.4g; nodes=%.0f x %.0f = %.4g; total=%.4g\n",
-        bc.per_local_point, bc.local_points, bc.points_total(), bc.per_contact, bc.contacts,
+        bc.per_local_point, bc.visited_points, bc.points_total(), bc.per_contact,
+        bc.contacts - bc.condensed_contacts, bc.per_condensed_contact, bc.condensed_contacts,
         bc.contacts_total(), bc.per_body, bc.bodies, bc.bodies_total(), bc.per_plate_contact,
         bc.plate_contacts, bc.plates_total(), bc.per_interface_contact, bc.interface_contacts,
         bc.per_local_point, bc.interface_points, bc.interfaces_total(), bc.per_node, bc.nodes,

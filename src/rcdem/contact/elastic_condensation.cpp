@@ -66,4 +66,11 @@ Index ElasticCondensation::condensed_count() const {
   return static_cast<Index>(std::count(condensed.begin(), condensed.end(), std::uint8_t{1}));
 }
 
+Index ElasticCondensation::condensed_point_count(const ContactNetwork& net) const {
+  Index n = 0;
+  for (Index c = 0; c < static_cast<Index>(condensed.size()); ++c)
+    if (condensed[static_cast<std::size_t>(c)]) n += net.points_of(c);
+  return n;
+}
+
 }  // namespace rcdem

@@ -55,6 +55,7 @@ struct ElasticCondensation {
   // After a restart: intact from the points' damage, nothing condensed.
   void reset_flags(const ContactNetwork& net, const std::vector<Real>& damage);
   Index condensed_count() const;
+  Index condensed_point_count(const ContactNetwork& net) const;  // their local points
 };
 
 // The condensed evaluation of one contact (formulas above). Returns false, writing nothing, when

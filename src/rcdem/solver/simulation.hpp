@@ -72,6 +72,7 @@ class Simulation {
   // Concrete contacts evaluated from their sums at the last step (0 when condensation is off,
   // and after a read of the state above has brought their points up to date).
   Index condensed_contacts() const { return condensation_.condensed_count(); }
+  Index condensed_points() const { return condensation_.condensed_point_count(specimen_.contacts); }
   // Brings condensed contacts' point histories up to the last step (contacts() does it).
   void catch_up_condensed_points() const;
   std::vector<Plate>& plates() { return plates_; }
