@@ -83,7 +83,8 @@ struct ContactInputs {
 // component of (x_A - anchor) perpendicular to the cylinder's current axis, pointing from A to the
 // axis, anchor being the interface sphere's centre carried by the cylinder: the sphere
 // discretisation then adds no artificial interlock along the bar.
-inline Vec3 contact_normal(const ContactInputs& in, Index a, Index b, Index c) {
+[[gnu::always_inline]] inline Vec3 contact_normal(const ContactInputs& in, Index a, Index b,
+                                                  Index c) {
   if (in.anchor0) {
     const Eigen::Matrix3d& rb = in.rotation[b];
     const Vec3 axis = rb * (in.q0[b] * Vec3::UnitZ());

@@ -18,12 +18,13 @@
 // Whether the points stay elastic this step is decided by a bound, not by visiting them: every
 // point lies within `radius` of r_c, so |u(r) - u_c| <= |D|_F radius, and the contact is condensed
 // only if u_cn + |D|_F radius and |u_c - u_cn n| + |D|_F radius stay below (1 - 1e-3) times the
-// smallest elastic limit of its points (fn_max / kn, c_max / ks). Points that would come near a
-// limit send the contact back to the point loop, which finds exactly what it would have found had
-// it visited the points every step (the limits are not crossed in between, and an intact point's
-// forces do not depend on its stored history). A condensed contact's point histories are brought up
-// to date only when someone reads them (Simulation::contacts(): outputs, the strain energy,
-// checkpoints), from the kinematics of the step's evaluation.
+// smallest elastic limit of its points (fn_max / kn, c_max / ks); the second is tested through
+// 2 (|u_c - u_cn n|^2 + (|D|_F radius)^2), a little more cautious and free of square roots. Points
+// that would come near a limit send the contact back to the point loop, which finds exactly what it
+// would have found had it visited the points every step (the limits are not crossed in between, and
+// an intact point's forces do not depend on its stored history). A condensed contact's point
+// histories are brought up to date only when someone reads them (Simulation::contacts(): outputs,
+// the strain energy, checkpoints), from the kinematics of the step's evaluation.
 #include <cstdint>
 #include <vector>
 
@@ -71,10 +72,15 @@ struct CondensedResult {
   const Eigen::Matrix3d d = rb - ra;
   const Vec3 u_c = u0 + d * k.centroid;
   const Real u_cn = n.dot(u_c);
-  const Real spread = d.norm() * k.radius;  // Frobenius norm >= the spectral one
+  // e = |D|_F radius (the Frobenius norm bounds the spectral one), compared squared: the
+  // opening u_cn + e < L_n as e^2 < (L_n - u_cn)^2 with L_n > u_cn, the slip |u_s| + e < L_s
+  // through (|u_s| + e)^2 <= 2 (|u_s|^2 + e^2) < L_s^2 (no square root on the way).
+  const Real spread_sq = d.squaredNorm() * (k.radius * k.radius);
   constexpr Real kMargin = 1.0 - 1e-3;
-  if (!(u_cn + spread < kMargin * k.u_n0)) return false;
-  if (!((u_c - u_cn * n).norm() + spread < kMargin * k.u_s0)) return false;
+  const Real room_n = kMargin * k.u_n0 - u_cn;
+  if (!(room_n > 0 && spread_sq < room_n * room_n)) return false;
+  const Real limit_s = kMargin * k.u_s0;
+  if (!(2 * ((u_c - u_cn * n).squaredNorm() + spread_sq) < limit_s * limit_s)) return false;
   const Vec3 f = -k.k_n * (k.alpha * u_c + ((1 - k.alpha) * u_cn) * n);
   const Eigen::Matrix3d s = 0.5 * (ra + rb);
   Eigen::Matrix3d jm;
