@@ -78,6 +78,19 @@ def reactions(case_dir):
                      for r in rows])
 
 
+def by_interface(model, got, pexp):
+    """A beam's peaks by interface (AN0's one case under EL), NL-B's error against the experiment
+    (AN0: its case's) and whether EL >= NL-A >= NL-B (None where a case is missing)."""
+    mine = {"EL": got.get("none")} if model == "AN0" else {i: got.get(i) for i in INTERFACES}
+    nlb = mine.get("NL-B") if model != "AN0" else mine.get("EL")
+    err = None if nlb is None else nlb / (pexp * 1e3) - 1
+    vals = [mine.get(i) for i in INTERFACES]
+    order = None
+    if model != "AN0" and all(v is not None for v in vals):
+        order = vals[0] >= vals[1] >= vals[2]
+    return mine, err, order
+
+
 def timoshenko_stiffness(model, span=SPAN):
     """Midspan stiffness P/delta of a simply supported beam under a central load, uncracked
     transformed section (steel as (n - 1) A_s of concrete at the bars' height), kappa = 5/6."""
@@ -359,16 +372,7 @@ def main(study):
         got = {v["interface"]: v["peak_load_N"] for v in report["cases"].values() if v["model"] == model}
         if not got:
             continue
-        if model == "AN0":
-            mine = {"EL": got.get("none")}
-        else:
-            mine = {i: got.get(i) for i in INTERFACES}
-        nlb = mine.get("NL-B") if model != "AN0" else mine.get("EL")
-        err = None if nlb is None else nlb / (pexp * 1e3) - 1
-        vals = [mine.get(i) for i in INTERFACES]
-        order = None
-        if model != "AN0" and all(v is not None for v in vals):
-            order = vals[0] >= vals[1] >= vals[2]
+        mine, err, order = by_interface(model, got, pexp)
         report["models"][model] = {"experiment_N": pexp * 1e3, "rcdem_N": mine, "nl_b_error": err,
                                    "ordering_holds": order}
         lines.append(
@@ -390,13 +394,7 @@ def main(study):
                if v["model"] == model}
         if not got:
             continue
-        mine = {"EL": got.get("none")} if model == "AN0" else {i: got.get(i) for i in INTERFACES}
-        nlb = mine.get("NL-B") if model != "AN0" else mine.get("EL")
-        err = None if nlb is None else nlb / (pexp * 1e3) - 1
-        vals = [mine.get(i) for i in INTERFACES]
-        order = None
-        if model != "AN0" and all(v is not None for v in vals):
-            order = vals[0] >= vals[1] >= vals[2]
+        mine, err, order = by_interface(model, got, pexp)
         report["models"][model]["reactions_N"] = mine
         report["models"][model]["reactions_nl_b_error"] = err
         report["models"][model]["reactions_ordering_holds"] = order
