@@ -218,7 +218,8 @@ void Simulation::step() {
     position_eval_[i] = bodies_.position[i];
   });
   const Eigen::Matrix3d* rot = rotation_.data();
-  const ContactInputs concrete = concrete_inputs(bodies_.position, rotation_);
+  // Evaluated from the copy, so that what a later catch-up reads is what this evaluation used.
+  const ContactInputs concrete = concrete_inputs(position_eval_, rotation_);
   const ContactInputs previous = concrete_inputs(position_prev_, rotation_prev_);
   if (law_kind_ == ConcreteLaw::BilinearSoftening)
     evaluate_contacts(bilinear_, concrete, contacts_,
