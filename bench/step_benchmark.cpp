@@ -123,7 +123,7 @@ ByteCount count_bytes(const rcdem::Simulation& sim) {
   // A condensed contact (contact/elastic_condensation.hpp) reads its sums and two flags instead of
   // its points, and leaves its frame (normal, tangent: read + written) alone.
   b.per_condensed_contact =
-      b.per_contact - 2 * 2 * V + sizeof(rcdem::CondensedContact) + 2 * sizeof(std::uint8_t);
+      b.per_contact - 2 * 2 * V + rcdem::CondensedSums::kBytesPerContact + 2 * sizeof(std::uint8_t);
   b.per_body = (3 * V + Q)    // contact loop
                + (I + 2 * V)  // gather
                + (4 * 2 * V + 2 * Q + Q + 3 * V + 2 * R + sizeof(std::int64_t) + 2 * R +

@@ -34,6 +34,16 @@ struct PointKinematics {
   return k;
 }
 
+// A contact's offset displacement u0 = dx - R_B r0 (dx = x_B - x_A, r0 = x_B0 - x_A0), component i
+// from row i of R_B: a small difference of large terms, so its rounding sets how closely two
+// evaluations of a contact agree, and the point loop and the condensed contacts' SIMD kernel
+// (elastic_condensation.cpp) both take it from here. Scalars only: a local array whose address is
+// taken in a SIMD loop becomes a per-lane array in memory.
+[[gnu::always_inline]] inline Real offset_displacement(Real dx_i, Real rb_i0, Real rb_i1,
+                                                       Real rb_i2, Real r0x, Real r0y, Real r0z) {
+  return dx_i - (rb_i0 * r0x + rb_i1 * r0y + rb_i2 * r0z);
+}
+
 // cos and sin of an angle that is nearly always tiny (a pair's spin in one step, ~1e-6 rad): their
 // Taylor series to within rounding below 1e-3 rad (the first omitted terms are < 2e-21), libm's
 // above. A libm sincos per contact was 2.5% of a step.

@@ -7,7 +7,7 @@ namespace rcdem {
 Vec3 any_perpendicular(const Vec3& n) {
   // Cross with the world axis least aligned with n: never degenerate.
   const int k = std::abs(n.x()) < std::abs(n.y()) ? (std::abs(n.x()) < std::abs(n.z()) ? 0 : 2)
-                                                   : (std::abs(n.y()) < std::abs(n.z()) ? 1 : 2);
+                                                  : (std::abs(n.y()) < std::abs(n.z()) ? 1 : 2);
   return n.cross(Vec3::Unit(k)).normalized();
 }
 

@@ -4,47 +4,63 @@
 #include <cmath>
 #include <limits>
 
+#include "rcdem/contact/contact_kinematics.hpp"
+
 namespace rcdem {
+
+void CondensedSums::resize(std::size_t n) {
+  for (std::vector<Real>* v : {&k_n, &alpha, &radius, &u_n0, &u_s0}) v->assign(n, 0.0);
+  for (auto& v : centroid) v.assign(n, 0.0);
+  for (auto& v : j) v.assign(n, 0.0);
+}
 
 ElasticCondensation ElasticCondensation::build(const ContactNetwork& net,
                                                const std::vector<Vec3>& x0) {
   ElasticCondensation e;
   const auto nc = static_cast<std::size_t>(net.contact_count());
-  e.sums.resize(nc);
+  CondensedSums& k = e.sums;
+  k.resize(nc);
   e.eligible.assign(nc, 0);
   for (Index c = 0; c < net.contact_count(); ++c) {
-    CondensedContact& k = e.sums[static_cast<std::size_t>(c)];
+    const auto i = static_cast<std::size_t>(c);
     const Index begin = net.point_begin[c], end = net.point_begin[c + 1];
     if (end == begin) continue;
     const Vec3& xa0 = x0[net.particle_a[c]];
     const Real alpha = net.constants[begin].ks / net.constants[begin].kn;
     bool uniform = true;
+    Real k_n = 0;
     Vec3 moment = Vec3::Zero();
-    k.u_n0 = k.u_s0 = std::numeric_limits<Real>::infinity();
+    Real u_n0 = std::numeric_limits<Real>::infinity(), u_s0 = u_n0;
     for (Index m = begin; m < end; ++m) {
       const LocalPointConstants& p = net.constants[m];
       uniform &= std::abs(p.ks - alpha * p.kn) <= 1e-12 * p.ks;
-      k.k_n += p.kn;
+      k_n += p.kn;
       moment += p.kn * (net.point_position0[m] - xa0);
-      k.u_n0 = std::min(k.u_n0, p.fn_max / p.kn);
-      k.u_s0 = std::min(k.u_s0, p.c_max / p.ks);
+      u_n0 = std::min(u_n0, p.fn_max / p.kn);
+      u_s0 = std::min(u_s0, p.c_max / p.ks);
     }
-    k.alpha = alpha;
-    k.centroid = moment / k.k_n;
+    const Vec3 centroid = moment / k_n;
     Eigen::Matrix3d j = Eigen::Matrix3d::Zero();
+    Real radius = 0;
     for (Index m = begin; m < end; ++m) {
-      const Vec3 rho = net.point_position0[m] - xa0 - k.centroid;
+      const Vec3 rho = net.point_position0[m] - xa0 - centroid;
       j += net.constants[m].kn * rho * rho.transpose();
-      k.radius = std::max(k.radius, rho.norm());
+      radius = std::max(radius, rho.norm());
     }
-    k.j[0] = j(0, 0);
-    k.j[1] = j(1, 1);
-    k.j[2] = j(2, 2);
-    k.j[3] = j(0, 1);
-    k.j[4] = j(0, 2);
-    k.j[5] = j(1, 2);
+    k.k_n[i] = k_n;
+    k.alpha[i] = alpha;
+    k.radius[i] = radius;
+    k.u_n0[i] = u_n0;
+    k.u_s0[i] = u_s0;
+    for (int d = 0; d < 3; ++d) k.centroid[d][i] = centroid[d];
+    k.j[0][i] = j(0, 0);
+    k.j[1][i] = j(1, 1);
+    k.j[2][i] = j(2, 2);
+    k.j[3][i] = j(0, 1);
+    k.j[4][i] = j(0, 2);
+    k.j[5][i] = j(1, 2);
     // A zero or NaN limit (zero strength) never passes the bound; nothing else to exclude.
-    e.eligible[static_cast<std::size_t>(c)] = uniform && k.k_n > 0 && std::isfinite(alpha);
+    e.eligible[i] = uniform && k_n > 0 && std::isfinite(alpha);
   }
   e.intact = e.eligible;
   e.condensed.assign(nc, 0);
@@ -60,6 +76,96 @@ void ElasticCondensation::reset_flags(const ContactNetwork& net, const std::vect
   }
   std::fill(condensed.begin(), condensed.end(), std::uint8_t{0});
   any_condensed = false;
+}
+
+void evaluate_condensed_block(const CondensedInputs& in, Index begin, Index count,
+                              CondensedBlock& out) {
+  // Raw components: Vec3 is 3 doubles, Matrix3d 9 column-major ones (R(i, j) = R[i + 3 j]).
+  const Real* x = in.x->data();
+  const Real* x0 = in.x0->data();
+  const Real* rot = in.rotation->data();
+  const auto at = [begin](const std::vector<Real>& v) { return v.data() + begin; };
+  const Real *k_n = at(in.sums.k_n), *alpha = at(in.sums.alpha), *radius = at(in.sums.radius);
+  const Real *u_n0 = at(in.sums.u_n0), *u_s0 = at(in.sums.u_s0);
+  const Real *cx = at(in.sums.centroid[0]), *cy = at(in.sums.centroid[1]),
+             *cz = at(in.sums.centroid[2]);
+  const Real *jxx = at(in.sums.j[0]), *jyy = at(in.sums.j[1]), *jzz = at(in.sums.j[2]),
+             *jxy = at(in.sums.j[3]), *jxz = at(in.sums.j[4]), *jyz = at(in.sums.j[5]);
+  const Index* pa = in.particle_a + begin;
+  const Index* pb = in.particle_b + begin;
+  constexpr Real kMargin = 1.0 - 1e-3;
+#pragma omp simd
+  for (Index l = 0; l < count; ++l) {
+    const Index a = pa[l], b = pb[l];
+    // Indexed from the arrays' base (a per-lane pointer defeats GCC's gathers).
+    const Index ia = 9 * a, ib = 9 * b;
+    // dx = x_B - x_A and the unit normal n along it.
+    Real dx[3], n[3], r0[3];
+    for (int i = 0; i < 3; ++i) {
+      dx[i] = x[3 * b + i] - x[3 * a + i];
+      r0[i] = x0[3 * b + i] - x0[3 * a + i];
+    }
+    const Real len = std::sqrt(dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]);
+    for (int i = 0; i < 3; ++i) n[i] = dx[i] / len;
+    // D = R_B - R_A, S = (R_A + R_B) / 2; u0 = dx - R_B r0 (SPEC 4).
+    Real d[9], sm[9];
+    Real d_sq = 0;
+    for (int e = 0; e < 9; ++e) {
+      d[e] = rot[ib + e] - rot[ia + e];
+      sm[e] = 0.5 * (rot[ia + e] + rot[ib + e]);
+      d_sq += d[e] * d[e];
+    }
+    const Real rc[3] = {cx[l], cy[l], cz[l]};
+    Real u0[3], uc[3], ac[3];
+    for (int i = 0; i < 3; ++i) {
+      u0[i] = offset_displacement(dx[i], rot[ib + i], rot[ib + i + 3], rot[ib + i + 6], r0[0],
+                                  r0[1], r0[2]);
+      uc[i] = u0[i] + d[i] * rc[0] + d[i + 3] * rc[1] + d[i + 6] * rc[2];
+      ac[i] = 0.5 * u0[i] + sm[i] * rc[0] + sm[i + 3] * rc[1] + sm[i + 6] * rc[2];
+    }
+    const Real ucn = n[0] * uc[0] + n[1] * uc[1] + n[2] * uc[2];
+    // The bound (see above), squared: e = |D|_F radius.
+    const Real spread_sq = d_sq * (radius[l] * radius[l]);
+    const Real room_n = kMargin * u_n0[l] - ucn;
+    Real us_sq = 0;
+    for (int i = 0; i < 3; ++i) {
+      const Real us = uc[i] - ucn * n[i];
+      us_sq += us * us;
+    }
+    const Real limit_s = kMargin * u_s0[l];
+    // Bitwise: no branch in the lanes (the caller adds `intact`: bytes in lanes of doubles).
+    out.below_limits[l] = (room_n > 0) & (spread_sq < room_n * room_n) &
+                          (2 * (us_sq + spread_sq) < limit_s * limit_s);
+    // F = -K (alpha u_c + (1 - alpha) u_cn n).
+    Real f[3];
+    const Real al = alpha[l];
+    for (int i = 0; i < 3; ++i) f[i] = -k_n[l] * (al * uc[i] + (1 - al) * ucn * n[i]);
+    // P = S J D^T, J symmetric (xx, yy, zz, xy, xz, yz).
+    const Real jm[9] = {jxx[l], jxy[l], jxz[l], jxy[l], jyy[l], jyz[l], jxz[l], jyz[l], jzz[l]};
+    Real jd[9];  // J D^T, column-major
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        jd[i + 3 * j] = jm[i] * d[j] + jm[i + 3] * d[j + 3] + jm[i + 6] * d[j + 6];
+    Real p[9];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        p[i + 3 * j] = sm[i] * jd[3 * j] + sm[i + 3] * jd[1 + 3 * j] + sm[i + 6] * jd[2 + 3 * j];
+    const Real axial[3] = {p[1 + 6] - p[2 + 3], p[2] - p[6], p[3] - p[1]};
+    Real pn[3];
+    for (int i = 0; i < 3; ++i) pn[i] = p[i] * n[0] + p[i + 3] * n[1] + p[i + 6] * n[2];
+    // M_A = a_c x F - alpha axial(P) - (1 - alpha) (P n) x n.
+    const Real mom[3] = {
+        ac[1] * f[2] - ac[2] * f[1] - al * axial[0] - (1 - al) * (pn[1] * n[2] - pn[2] * n[1]),
+        ac[2] * f[0] - ac[0] * f[2] - al * axial[1] - (1 - al) * (pn[2] * n[0] - pn[0] * n[2]),
+        ac[0] * f[1] - ac[1] * f[0] - al * axial[2] - (1 - al) * (pn[0] * n[1] - pn[1] * n[0])};
+    const Real dxf[3] = {dx[1] * f[2] - dx[2] * f[1], dx[2] * f[0] - dx[0] * f[2],
+                         dx[0] * f[1] - dx[1] * f[0]};
+    for (int i = 0; i < 3; ++i) {
+      out.force[i][l] = f[i];
+      out.torque_b[i][l] = mom[i] - dxf[i];
+      out.torque_a[i][l] = -mom[i];
+    }
+  }
 }
 
 Index ElasticCondensation::condensed_count() const {

@@ -21,4 +21,20 @@ void parallel_for(std::int64_t n, Body&& body) {
 #endif
 }
 
+// The same over blocks of `block` consecutive items, body(begin, end), handed out as threads
+// become free: for loops whose items cost unequal amounts (the contacts of a cracked region visit
+// their points, the others only their sums). The blocks are fixed by the item numbers, so which
+// thread runs a block changes nothing in its results.
+template <typename Body>
+void parallel_for_blocks(std::int64_t n, std::int64_t block, Body&& body) {
+  const std::int64_t blocks = (n + block - 1) / block;
+#if defined(_OPENMP)
+#pragma omp parallel for schedule(dynamic, 1) if (n >= kParallelMinItems)
+#endif
+  for (std::int64_t k = 0; k < blocks; ++k) {
+    const std::int64_t begin = k * block;
+    body(begin, begin + block < n ? begin + block : n);
+  }
+}
+
 }  // namespace rcdem

@@ -12,6 +12,11 @@
 
 namespace rcdem {
 
+namespace {
+// A body that turns more than 0.05 rad in one step is unstable: tan(0.025) of its half-angle.
+const Real kTanHalfTurnLimit = std::tan(0.025);
+}  // namespace
+
 Simulation::Simulation(const Scenario& sc, Specimen specimen)
     : specimen_(std::move(specimen)),
       bodies_(bodies_from_particles(specimen_.particles, sc.solver.density, sc.solver.mass_scaling,
@@ -387,7 +392,8 @@ void Simulation::integrate() {
     b.angular_velocity[i] = w_new;
     const Vec3 dx = v_new * dt;
     b.position[i] += dx;
-    const Real angle = b.orientation[i].angularDistance(q_old);
+    // The turn's half-angle: tan(theta / 2) = |vec| / |w| of q q_old^-1 (atan2 was 2% of a step).
+    const Quat turn = b.orientation[i] * q_old.conjugate();
     body_damping_work_[i] = damping_work;
     // The leap-frog's kinetic energy at the whole step, 1/2 m v(n-1/2).v(n+1/2) (and its rotational
     // analogue): the quantity it conserves with the strain energy. The mean of the two half-step
@@ -395,7 +401,9 @@ void Simulation::integrate() {
     body_kinetic_[i] = 0.5 * b.mass[i] * v_old.dot(v_new) +
                        0.25 * (L_old.dot(w_new) + b.angular_momentum[i].dot(w_old));
     // Instability: in a stable run nothing moves a twentieth of its size in one step.
-    body_jumped_[i] = !(dx.norm() < 0.05 * b.radius[i]) || !(angle < 0.05);
+    const Real dx_limit = 0.05 * b.radius[i];
+    body_jumped_[i] = !(dx.squaredNorm() < dx_limit * dx_limit) ||
+                      !(turn.vec().norm() < kTanHalfTurnLimit * std::abs(turn.w()));
   });
   for (Index i = 0; i < b.size(); ++i)
     if (body_jumped_[i])
