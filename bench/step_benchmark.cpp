@@ -7,12 +7,15 @@
 // Prints one line of key=value pairs (scenario, threads, bodies, contacts, local_points, steps,
 // seconds, steps_per_s, particle_steps_per_s, contact_steps_per_s, local_point_steps_per_s,
 // bytes_per_step, bytes_per_local_point, achieved_GBps, condensed_contacts: those evaluated from
-// their sums at the last step, contact/elastic_condensation.hpp) and a second line starting
+// their sums at the last step, contact/elastic_condensation.hpp; cpu_seconds: the process's CPU
+// time over the timed steps, all threads, idle spinning included: on a shared machine the steadier
+// figure at 1 thread) and a second line starting
 // "# bytes:" with the breakdown of bytes_per_step (see bytes_per_step() below for the model and
 // every term).
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
+#include <ctime>
 #include <exception>
 #include <string>
 
@@ -186,9 +189,11 @@ int main(int argc, char** argv) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - g0).count();
     for (int k = 0; k < 50; ++k) sim.step();  // warm-up: caches, pages, branch history
     const auto t0 = std::chrono::steady_clock::now();
+    const std::clock_t c0 = std::clock();
     for (long k = 0; k < steps; ++k) sim.step();
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double cpu_seconds = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
 
     int threads = 1;
 #if defined(_OPENMP)
@@ -204,10 +209,10 @@ int main(int argc, char** argv) {
         "scenario=%s threads=%d bodies=%.0f contacts=%.0f local_points=%.0f steps=%ld "
         "seconds=%.4f steps_per_s=%.3f particle_steps_per_s=%.4g contact_steps_per_s=%.4g "
         "local_point_steps_per_s=%.4g bytes_per_step=%.0f bytes_per_local_point=%.1f "
-        "achieved_GBps=%.3f setup_seconds=%.2f condensed_contacts=%.0f\n",
+        "achieved_GBps=%.3f setup_seconds=%.2f condensed_contacts=%.0f cpu_seconds=%.4f\n",
         path.c_str(), threads, bodies, contacts, points, steps, seconds, rate, rate * bodies,
         rate * contacts, rate * points, bytes, bytes / points, bytes * rate * 1e-9, setup_s,
-        bc.condensed_contacts);
+        bc.condensed_contacts, cpu_seconds);
     std::printf(
         "# bytes: per_local_point=%.0f x %.0f visited = %.4g; per_contact=%.0f x %.0f + "
         "condensed %.0f x %.0f = %.4g; "

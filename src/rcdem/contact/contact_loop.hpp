@@ -200,24 +200,16 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
     return;
   }
   cond->any_condensed = true;  // cleared by the catch-up; harmless if none was
-  const CondensedInputs ci{
-      cond->sums, in.net.particle_a.data(), in.net.particle_b.data(), in.x, in.x0, in.rotation};
+  const CondensedInputs ci{cond->sums, in.net.particle_a.data(), in.net.particle_b.data(), in.x,
+                           in.rotation};
   parallel_for_blocks(in.net.contact_count(), CondensedBlock::kSize, [&](Index begin, Index end) {
     CondensedBlock block;
-    evaluate_condensed_block(ci, begin, end - begin, block);
+    evaluate_condensed_block(ci, begin, end - begin, cs, block);
     for (Index c = begin; c < end; ++c) {
-      const Index l = c - begin;
       const bool was_condensed = cond->condensed[c];
-      const bool keep = cond->intact[c] && block.below_limits[l];
+      const bool keep = cond->intact[c] && block.below_limits[c - begin];
       cond->condensed[c] = keep;
-      if (keep) {
-        cs.force_b[c] = {block.force[0][l], block.force[1][l], block.force[2][l]};
-        cs.torque_b[c] = {block.torque_b[0][l], block.torque_b[1][l], block.torque_b[2][l]};
-        cs.torque_a[c] = {block.torque_a[0][l], block.torque_a[1][l], block.torque_a[2][l]};
-        cs.dissipated_damage[c] = 0.0;
-        cs.dissipated_friction[c] = 0.0;
-        continue;
-      }
+      if (keep) continue;
       if (was_condensed) evaluate_contact<Law, true>(law, *previous, cs, cond, c);
       evaluate_contact(law, in, cs, cond, c);
     }

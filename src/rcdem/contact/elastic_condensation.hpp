@@ -29,13 +29,14 @@
 #include <cstdint>
 #include <vector>
 
+#include "rcdem/contact/contact_state.hpp"
 #include "rcdem/core/types.hpp"
 #include "rcdem/state/contact_network.hpp"
 
 namespace rcdem {
 
 // The per-contact sums, one array per quantity: SIMD lanes load 8 contacts' values at once
-// (a record per contact, 14 doubles, defeated GCC's vectoriser).
+// (a record per contact, 17 doubles, defeated GCC's vectoriser).
 struct CondensedSums {
   std::vector<Real> k_n;                      // sum of the points' kn [N/m]
   std::vector<Real> alpha;                    // ks / kn, the same at every point
@@ -43,9 +44,10 @@ struct CondensedSums {
   std::vector<Real> u_n0;                     // min fn_max / kn over the points [m]
   std::vector<Real> u_s0;                     // min c_max / ks over the points [m]
   std::array<std::vector<Real>, 3> centroid;  // r_c, relative to A's centre at t = 0 [m]
+  std::array<std::vector<Real>, 3> offset0;   // x_B0 - x_A0 (loaded, not gathered) [m]
   std::array<std::vector<Real>, 6> j;         // J = sum kn rho rho^T: xx, yy, zz, xy, xz, yz [N m]
 
-  static constexpr std::size_t kBytesPerContact = 14 * sizeof(Real);
+  static constexpr std::size_t kBytesPerContact = 17 * sizeof(Real);
   bool empty() const { return k_n.empty(); }
   void resize(std::size_t n);
 };
@@ -67,16 +69,13 @@ struct ElasticCondensation {
 
 // The condensed evaluation of a block of consecutive contacts (formulas above), written as plain
 // arithmetic on scalars so that GCC runs it in SIMD lanes (8 contacts at a time with AVX-512): the
-// bodies' centres and rotation matrices are gathered, the results go to the block's own arrays and
-// the caller copies those it keeps. Every contact of the block is computed, so no lane branches;
-// The caller keeps those intact whose points stay below their limits (`below_limits`). A block
-// covers fixed contact numbers, so a contact is computed by the same instructions whatever the
-// thread count.
+// bodies' centres and rotation matrices are gathered. Every contact of the block is computed and
+// its force, torques and zero dissipation stored, so no lane branches; `below_limits` says which
+// ones the caller may keep (with `intact`); it evaluates the others through their points, which
+// overwrites what was stored. A block covers fixed contact numbers, so a contact is computed by
+// the same instructions whatever the thread count.
 struct CondensedBlock {
   static constexpr Index kSize = 128;
-  Real force[3][kSize];              // on B
-  Real torque_b[3][kSize];           // about B's centre
-  Real torque_a[3][kSize];           // about A's centre
   std::int64_t below_limits[kSize];  // 0 or 1: no point near an elastic limit
 };
 
@@ -85,12 +84,12 @@ struct CondensedInputs {
   const Index* particle_a;
   const Index* particle_b;
   const Vec3* x;                    // centres at the evaluation
-  const Vec3* x0;                   // at t = 0
   const Eigen::Matrix3d* rotation;  // orientations
 };
 
-// Contacts [begin, begin + count), count <= CondensedBlock::kSize.
-void evaluate_condensed_block(const CondensedInputs& in, Index begin, Index count,
+// Contacts [begin, begin + count), count <= CondensedBlock::kSize; writes their entries of
+// force_b, torque_b, torque_a, dissipated_damage, dissipated_friction.
+void evaluate_condensed_block(const CondensedInputs& in, Index begin, Index count, ContactState& cs,
                               CondensedBlock& out);
 
 }  // namespace rcdem
