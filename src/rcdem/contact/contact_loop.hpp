@@ -186,7 +186,9 @@ template <typename Law, bool kPointsOnly = false>
 
 // The loop over a network's contacts. With `cond` (the concrete network under BL), an intact
 // contact whose points stay below their limits is evaluated from its sums
-// (elastic_condensation.hpp) and flagged; the rest go through their points.
+// (elastic_condensation.hpp) and flagged; the rest go through their points. By blocks of
+// consecutive contacts: every contact of a block from its sums in SIMD lanes first, then those
+// not intact or near a limit through their points, overwriting what the lanes stored.
 //
 // `previous` (with `cond`): the last evaluation's kinematics. A contact condensed then and visited
 // now first has its points brought up to that step, so that the law sees the history it would
