@@ -1,0 +1,44 @@
+#!/usr/bin/python3
+"""The packing's scatter of a beam's peak: one row per run directory given (rcdem run outputs),
+with the loading plate's peak, the support reactions' peak, the plateau mean over a deflection
+window and the seed. Markdown to stdout.
+
+Usage: tools/seed_scatter.py [--plateau LO HI (mm, default 1.0 1.4)] RUN_DIR...
+"""
+import json
+import sys
+import tomllib
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from study_report import curve, reactions  # noqa: E402  (the study's own readings)
+
+
+def main(argv):
+    lo, hi = 1.0e-3, 1.4e-3
+    if argv[:1] == ["--plateau"]:
+        lo, hi = float(argv[1]) * 1e-3, float(argv[2]) * 1e-3
+        argv = argv[3:]
+    if not argv:
+        sys.exit(__doc__)
+    print(f"| run | seed | peak (plate) | δ at peak | reactions' peak | mean {lo*1e3:g}–{hi*1e3:g} mm |")
+    print("|---|---|---|---|---|---|")
+    for arg in argv:
+        run = Path(arg)
+        try:
+            summary = json.loads((run / "summary.json").read_text())
+            scenario = tomllib.loads((run / "scenario.toml").read_text())
+            defl, plate = curve(str(run))
+            sums = reactions(str(run))
+        except (OSError, KeyError, ValueError) as e:
+            sys.exit(f"seed_scatter.py: {run}: not a finished run ({e})")
+        seed = scenario.get("generation", {}).get("seed", "?")
+        window = [p for d, p in zip(defl, plate) if lo <= d <= hi]
+        mean = f"{sum(window) / len(window) / 1e3:.2f} kN" if window else "–"
+        print(f"| {run.name} | {seed} | {summary['peak_load_N'] / 1e3:.2f} kN | "
+              f"{abs(summary['displacement_at_peak_m']) * 1e3:.3f} mm | "
+              f"{'–' if sums is None else f'{sums.max() / 1e3:.2f} kN'} | {mean} |")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
