@@ -1,9 +1,10 @@
 // Times Simulation::step() on a scenario's specimen and turns the time into throughput and memory
 // bandwidth (issue: bench/ throughput and bandwidth, YADE side by side).
 //
-// Usage: rcdem_step_bench SCENARIO.toml STEPS
-//   Generates the specimen (not timed), runs 50 warm-up steps, then times STEPS calls of step()
-//   with steady_clock. Stop rules, history and snapshots are not involved (this is the step alone).
+// Usage: rcdem_step_bench SCENARIO.toml STEPS [WARMUP=50]
+//   Generates the specimen (not timed), runs WARMUP steps (not timed), then times STEPS calls of
+//   step() with steady_clock. Stop rules, history and snapshots are not involved (this is the step
+//   alone).
 // Prints one line of key=value pairs (scenario, threads, bodies, contacts, local_points, steps,
 // seconds, steps_per_s, particle_steps_per_s, contact_steps_per_s, local_point_steps_per_s,
 // bytes_per_step, bytes_per_local_point, achieved_GBps, condensed_contacts: those evaluated from
@@ -170,14 +171,20 @@ ByteCount count_bytes(const rcdem::Simulation& sim) {
 double bytes_per_step(const rcdem::Simulation& sim) { return count_bytes(sim).total(); }
 
 int main(int argc, char** argv) {
-  if (argc != 3) {
-    std::fprintf(stderr, "usage: rcdem_step_bench SCENARIO.toml STEPS\n");
+  if (argc != 3 && argc != 4) {
+    std::fprintf(stderr, "usage: rcdem_step_bench SCENARIO.toml STEPS [WARMUP=50]\n");
     return 1;
   }
   const std::string path = argv[1];
-  const long steps = std::stol(argv[2]);
-  if (steps <= 0) {
-    std::fprintf(stderr, "rcdem_step_bench: STEPS must be > 0\n");
+  long steps = 0, warmup = 50;
+  try {
+    steps = std::stol(argv[2]);
+    if (argc == 4) warmup = std::stol(argv[3]);
+  } catch (const std::exception&) {
+    steps = -1;
+  }
+  if (steps <= 0 || warmup < 0) {
+    std::fprintf(stderr, "rcdem_step_bench: STEPS must be > 0 and WARMUP >= 0 (whole numbers)\n");
     return 1;
   }
   rcdem::Progress::set_quiet_default(true);  // no generation progress lines among the results
@@ -187,7 +194,9 @@ int main(int argc, char** argv) {
     rcdem::Simulation sim(sc, rcdem::build_specimen(sc));
     const double setup_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - g0).count();
-    for (int k = 0; k < 50; ++k) sim.step();  // warm-up: caches, pages, branch history
+    // Warm-up: caches, pages, branch history; a long one loads the specimen into cracking, so
+    // that the timed steps see damaged contacts (the default 50 leaves every contact elastic).
+    for (long k = 0; k < warmup; ++k) sim.step();
     const auto t0 = std::chrono::steady_clock::now();
     const std::clock_t c0 = std::clock();
     for (long k = 0; k < steps; ++k) sim.step();
