@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """The packing's scatter of a beam's peak: one row per run directory given (rcdem run outputs),
 with the loading plate's peak, the support reactions' peak, the plateau mean over a deflection
-window and the seed. Markdown to stdout.
+window and the seed. Markdown to stdout. A run still going (or stopped) is read from its history
+rows so far, and says so.
 
 Usage: tools/seed_scatter.py [--plateau LO HI (mm, default 1.0 1.4)] RUN_DIR...
 """
@@ -21,23 +22,32 @@ def main(argv):
         argv = argv[3:]
     if not argv:
         sys.exit(__doc__)
-    print(f"| run | seed | peak (plate) | δ at peak | reactions' peak | mean {lo*1e3:g}–{hi*1e3:g} mm |")
-    print("|---|---|---|---|---|---|")
+    print(f"| run | seed | peak (plate) | δ at peak | reactions' peak | mean {lo*1e3:g}–{hi*1e3:g} mm | reached |")
+    print("|---|---|---|---|---|---|---|")
     for arg in argv:
         run = Path(arg)
         try:
-            summary = json.loads((run / "summary.json").read_text())
             scenario = tomllib.loads((run / "scenario.toml").read_text())
             defl, plate = curve(str(run))
             sums = reactions(str(run))
         except (OSError, KeyError, ValueError) as e:
-            sys.exit(f"seed_scatter.py: {run}: not a finished run ({e})")
+            sys.exit(f"seed_scatter.py: {run}: no readable history ({e})")
+        if len(defl) == 0:
+            sys.exit(f"seed_scatter.py: {run}: the history has no rows yet")
+        summary_path = run / "summary.json"
+        if summary_path.exists():  # the run's own peak, from every step
+            summary = json.loads(summary_path.read_text())
+            peak, at = summary["peak_load_N"], abs(summary["displacement_at_peak_m"])
+            reached = f"{summary['stop_reason']} at {defl.max() * 1e3:.2f} mm"
+        else:  # running or stopped: the history rows' peak so far
+            k = int(plate.argmax())
+            peak, at = float(plate[k]), float(defl[k])
+            reached = f"unfinished, {defl.max() * 1e3:.2f} mm"
         seed = scenario.get("generation", {}).get("seed", "?")
-        window = [p for d, p in zip(defl, plate) if lo <= d <= hi]
-        mean = f"{sum(window) / len(window) / 1e3:.2f} kN" if window else "–"
-        print(f"| {run.name} | {seed} | {summary['peak_load_N'] / 1e3:.2f} kN | "
-              f"{abs(summary['displacement_at_peak_m']) * 1e3:.3f} mm | "
-              f"{'–' if sums is None else f'{sums.max() / 1e3:.2f} kN'} | {mean} |")
+        window = plate[(defl >= lo) & (defl <= hi)]
+        mean = f"{window.mean() / 1e3:.2f} kN" if len(window) and defl.max() >= hi else "–"
+        print(f"| {run.name} | {seed} | {peak / 1e3:.2f} kN | {at * 1e3:.3f} mm | "
+              f"{'–' if sums is None else f'{sums.max() / 1e3:.2f} kN'} | {mean} | {reached} |")
 
 
 if __name__ == "__main__":

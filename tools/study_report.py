@@ -60,7 +60,8 @@ def read_csv(path):
 
 def curve(case_dir):
     rows = read_csv(os.path.join(case_dir, "history.csv"))
-    control = json.load(open(os.path.join(case_dir, "summary.json"))).get("control", "load")
+    summary = os.path.join(case_dir, "summary.json")  # absent while a run is going
+    control = json.load(open(summary)).get("control", "load") if os.path.exists(summary) else "load"
     d = np.array([abs(float(r[f"{control}_displacement_m"])) for r in rows])
     p = np.array([float(r["load_N"]) for r in rows])
     return d, p
