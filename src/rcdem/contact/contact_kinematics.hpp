@@ -11,6 +11,7 @@
 // limit of a Table 2 contact). The law still receives increments: du = u_J(now) - u_J(before).
 #include <cmath>
 
+#include "rcdem/core/small_angle.hpp"
 #include "rcdem/core/types.hpp"
 
 namespace rcdem {
@@ -44,14 +45,13 @@ struct PointKinematics {
   return dx_i - (rb_i0 * r0x + rb_i1 * r0y + rb_i2 * r0z);
 }
 
-// cos and sin of an angle that is nearly always tiny (a pair's spin in one step, ~1e-6 rad): their
-// Taylor series to within rounding below 1e-3 rad (the first omitted terms are < 2e-21), libm's
-// above. A libm sincos per contact was 2.5% of a step.
+// cos and sin of a pair's spin in one step (core/small_angle.hpp below 1e-3 rad, libm above). A
+// libm sincos per contact was 2.5% of a step.
 [[gnu::always_inline]] inline void small_angle_cos_sin(Real a, Real& c, Real& s) {
   if (std::abs(a) < 1e-3) {
-    const Real a2 = a * a;
-    c = 1.0 - a2 * (0.5 - a2 * (1.0 / 24.0));
-    s = a * (1.0 - a2 * (1.0 / 6.0 - a2 * (1.0 / 120.0)));
+    Real sinc;
+    small_angle_cos_sinc(a * a, c, sinc);
+    s = a * sinc;
   } else {
     c = std::cos(a);
     s = std::sin(a);

@@ -21,20 +21,22 @@
 // (1/2 L.w).
 #include <Eigen/Geometry>
 
+#include "rcdem/core/small_angle.hpp"
 #include "rcdem/core/types.hpp"
 #include "rcdem/state/bodies.hpp"
 
 namespace rcdem {
 
 // exp of a rotation vector: the rotation by |rot| about rot, q = (cos h, sin h rot / |rot|) with
-// h = |rot| / 2. A body turns ~1e-6 rad in a step: below h = 1e-3 the Taylor series of cos h and of
-// sin h / (2 h) are exact to rounding (first omitted terms < 2e-21) and need no square root, sine
-// or division (libm's sincos and the normalisation were a tenth of the bodies' update).
+// h = |rot| / 2. A body turns ~1e-6 rad in a step: there cos h and sin h / h come from their series
+// (core/small_angle.hpp), from h^2 alone (libm's sincos and the normalisation were a tenth of the
+// bodies' update).
 [[gnu::always_inline]] inline Quat rotation_exp(const Vec3& rot) {
   const Real h2 = 0.25 * rot.squaredNorm();
-  if (h2 < 1e-6) {
-    const Real c = 1.0 - h2 * (0.5 - h2 * (1.0 / 24.0));
-    const Real s_over_angle = 0.5 * (1.0 - h2 * (1.0 / 6.0 - h2 * (1.0 / 120.0)));
+  if (is_small_angle(h2)) {
+    Real c, sinc;
+    small_angle_cos_sinc(h2, c, sinc);
+    const Real s_over_angle = 0.5 * sinc;  // sin h / |rot|
     return Quat(c, s_over_angle * rot.x(), s_over_angle * rot.y(), s_over_angle * rot.z());
   }
   const Real angle = rot.norm();
