@@ -89,6 +89,7 @@ Evaluated evaluate(const BilinearSoftening& law, const Specimen& sp, const Bodie
   e.cs.init(sp.contacts, b.position0);
   std::vector<Eigen::Matrix3d> rot;
   for (const Quat& q : b.orientation) rot.push_back(q.toRotationMatrix());
+  const BodyPoses pose = BodyPoses::of(b.position, b.orientation);
   const ContactInputs in{sp.contacts,
                          b.position.data(),
                          b.position0.data(),
@@ -96,7 +97,8 @@ Evaluated evaluate(const BilinearSoftening& law, const Specimen& sp, const Bodie
                          b.orientation0.data(),
                          rot.data(),
                          nullptr,
-                         1e-7};
+                         1e-7,
+                         pose.ptr()};
   if (condense) {
     e.cond = ElasticCondensation::build(sp.contacts, b.position0);
     evaluate_contacts(law, in, e.cs, &e.cond, &in);

@@ -3,6 +3,7 @@
 // template parameter, chosen once per step). Each contact writes only its own outputs, so the
 // loop runs in parallel and the result does not depend on the thread count.
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <vector>
 
@@ -78,6 +79,7 @@ struct ContactInputs {
   const Eigen::Matrix3d* rotation;  // orientations as matrices
   const Vec3* anchor0;              // interface contacts only (below), else null
   Real dt;
+  const Real* pose = nullptr;  // BodyPoses of x and the orientations: needed with condensation
 };
 
 // With `anchor0` (steel-concrete interface contacts, SPEC 8), B is a cylinder and the normal is the
@@ -201,9 +203,10 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
     parallel_for(in.net.contact_count(), [&](Index c) { evaluate_contact(law, in, cs, cond, c); });
     return;
   }
+  assert(in.pose && "the condensed kernel reads the bodies' poses");
   cond->any_condensed = true;  // cleared by the catch-up; harmless if none was
-  const CondensedInputs ci{cond->sums, in.net.particle_a.data(), in.net.particle_b.data(), in.x,
-                           in.rotation};
+  const CondensedInputs ci{cond->sums, in.net.particle_a.data(), in.net.particle_b.data(),
+                           in.pose, in.net.contact_count()};
   parallel_for_blocks(in.net.contact_count(), CondensedBlock::kSize, [&](Index begin, Index end) {
     CondensedBlock block;
     evaluate_condensed_block(ci, begin, end - begin, cs, block);

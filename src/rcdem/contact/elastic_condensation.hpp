@@ -31,6 +31,7 @@
 
 #include "rcdem/contact/contact_state.hpp"
 #include "rcdem/core/types.hpp"
+#include "rcdem/state/body_poses.hpp"
 #include "rcdem/state/contact_network.hpp"
 
 namespace rcdem {
@@ -69,7 +70,7 @@ struct ElasticCondensation {
 
 // The condensed evaluation of a block of consecutive contacts (formulas above), written as plain
 // arithmetic on scalars so that GCC runs it in SIMD lanes (8 contacts at a time with AVX-512): the
-// bodies' centres and rotation matrices are gathered. Every contact of the block is computed and
+// bodies' poses are gathered and their rotation matrices rebuilt in the lanes. Every contact of the block is computed and
 // its force, torques and zero dissipation stored, so no lane branches; `below_limits` says which
 // ones the caller may keep (with `intact`); it evaluates the others through their points, which
 // overwrites what was stored. A block covers fixed contact numbers, so a contact is computed by
@@ -83,8 +84,8 @@ struct CondensedInputs {
   const CondensedSums& sums;
   const Index* particle_a;
   const Index* particle_b;
-  const Vec3* x;                    // centres at the evaluation
-  const Eigen::Matrix3d* rotation;  // orientations
+  const Real* pose;  // the bodies' centres and orientations at the evaluation (BodyPoses)
+  Index contact_count;
 };
 
 // Contacts [begin, begin + count), count <= CondensedBlock::kSize; writes their entries of

@@ -29,7 +29,7 @@ template <typename Body>
 void parallel_for_blocks(std::int64_t n, std::int64_t block, Body&& body) {
   const std::int64_t blocks = (n + block - 1) / block;
 #if defined(_OPENMP)
-#pragma omp parallel for schedule(dynamic, 1) if (n >= kParallelMinItems)
+#pragma omp parallel for schedule(dynamic, 4) if (n >= kParallelMinItems)
 #endif
   for (std::int64_t k = 0; k < blocks; ++k) {
     const std::int64_t begin = k * block;

@@ -100,6 +100,7 @@ Simulation::Simulation(const Scenario& sc, Specimen specimen)
   rotation_prev_ = rotation_;
   position_eval_ = bodies_.position;
   position_prev_ = bodies_.position;
+  pose_.resize(bodies_.size());
   compute_stable_time_step();
   dt_ = sc.solver.dt_safety * stable_dt_;
   if (sc.solver.time_step > 0.0) {
@@ -221,10 +222,12 @@ void Simulation::step() {
   parallel_for(bodies_.size(), [&](Index i) {
     rotation_[i] = bodies_.orientation[i].toRotationMatrix();
     position_eval_[i] = bodies_.position[i];
+    pose_.set(i, bodies_.position[i], bodies_.orientation[i]);
   });
   const Eigen::Matrix3d* rot = rotation_.data();
   // Evaluated from the copy, so that what a later catch-up reads is what this evaluation used.
-  const ContactInputs concrete = concrete_inputs(position_eval_, rotation_);
+  ContactInputs concrete = concrete_inputs(position_eval_, rotation_);
+  concrete.pose = pose_.ptr();
   const ContactInputs previous = concrete_inputs(position_prev_, rotation_prev_);
   if (law_kind_ == ConcreteLaw::BilinearSoftening)
     evaluate_contacts(bilinear_, concrete, contacts_,

@@ -153,6 +153,7 @@ class Simulation {
   // Every body's orientation as a matrix, formed at the start of each step for the contact loops
   // (derived from the orientations: not part of a checkpoint).
   std::vector<Eigen::Matrix3d> rotation_, rotation_prev_;
+  BodyPoses pose_;  // the same with the centres, for the condensed contacts' kernel
 };
 
 }  // namespace rcdem
