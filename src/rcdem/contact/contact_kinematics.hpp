@@ -45,10 +45,10 @@ struct PointKinematics {
   return dx_i - (rb_i0 * r0x + rb_i1 * r0y + rb_i2 * r0z);
 }
 
-// cos and sin of a pair's spin in one step (core/small_angle.hpp below 1e-3 rad, libm above). A
+// cos and sin of a pair's spin in one step (core/small_angle.hpp below 0.1 rad, libm above). A
 // libm sincos per contact was 2.5% of a step.
 [[gnu::always_inline]] inline void small_angle_cos_sin(Real a, Real& c, Real& s) {
-  if (std::abs(a) < 1e-3) {
+  if (is_small_angle(a * a)) {
     Real sinc;
     small_angle_cos_sinc(a * a, c, sinc);
     s = a * sinc;

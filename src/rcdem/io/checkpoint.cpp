@@ -375,7 +375,7 @@ struct CheckpointAccess {
     ar.table("bodies.step", nb, 3, [&](auto& r, std::size_t i) {
       r.f(s.body_damping_work_[i]);
       r.f(s.body_kinetic_[i]);
-      r.u8(s.body_jumped_[i]);
+      r.i(s.body_jumped_[i]);
     });
     contact_state(ar, "contacts", s.contacts_);
     for (std::size_t k = 0; k < s.interface_states_.size(); ++k)

@@ -8,13 +8,14 @@
 #include "rcdem/core/parallel.hpp"
 #include "rcdem/reinforcement/rigid_rotation.hpp"
 #include "rcdem/solver/body_stiffness.hpp"
+#include "rcdem/solver/sphere_update.hpp"
 #include "rcdem/tessellation/interface_network_builder.hpp"
 
 namespace rcdem {
 
 namespace {
-// A body that turns more than 0.05 rad in one step is unstable: tan(0.025) of its half-angle.
-const Real kTanHalfTurnLimit = std::tan(0.025);
+// A body that turns more than 0.05 rad in one step is unstable.
+constexpr Real kTurnLimit = 0.05;
 }  // namespace
 
 Simulation::Simulation(const Scenario& sc, Specimen specimen)
@@ -96,6 +97,12 @@ Simulation::Simulation(const Scenario& sc, Specimen specimen)
   body_damping_work_.assign(n, 0.0);
   body_kinetic_.assign(n, 0.0);
   body_jumped_.assign(n, 0);
+  // The concrete particles: the leading bodies with isotropic inertia that no bar drives.
+  spheres_ = 0;
+  while (spheres_ < bodies_.size() && driven_[static_cast<std::size_t>(spheres_)] < 0 &&
+         bodies_.inertia[spheres_].x() == bodies_.inertia[spheres_].y() &&
+         bodies_.inertia[spheres_].y() == bodies_.inertia[spheres_].z())
+    ++spheres_;
   rotation_.assign(n, Eigen::Matrix3d::Identity());
   rotation_prev_ = rotation_;
   position_eval_ = bodies_.position;
@@ -357,7 +364,12 @@ void Simulation::integrate() {
   const Real dt = dt_;
   const Real alpha = damping_;
   Bodies& b = bodies_;
-  parallel_for(b.size(), [&](Index i) {
+  // The concrete particles in SIMD lanes (sphere_update.hpp), then the cylinders.
+  const SphereStepOutputs out{body_damping_work_.data(), body_kinetic_.data(), body_jumped_.data()};
+  parallel_for_blocks(spheres_, 128, [&](Index begin, Index end) {
+    advance_spheres(b, begin, end, dt, alpha, out);
+  });
+  for (Index i = spheres_; i < b.size(); ++i) {
     // Local non-viscous damping (Cundall): each component of the force is reduced by alpha |F|
     // against the velocity. Its work, on the mean of the old and new velocities, is the energy
     // damping removes (the leap-frog kinetic energy changes by exactly that mean).
@@ -381,13 +393,11 @@ void Simulation::integrate() {
       b.angular_momentum[i].setZero();
     }
     // Rotation: the angular momentum takes the torque and the orientation follows by the
-    // rotational leap-frog (rigid_rotation.hpp): exact for the spheres' isotropic inertia, second
-    // order for the cylinders'.
-    // Spheres keep the angular velocity as their state (L = I w, so a caller may set w); cylinders
-    // keep the angular momentum.
+    // rotational leap-frog (rigid_rotation.hpp): exact for isotropic inertia, second order for
+    // the cylinders'. Spheres keep the angular velocity as their state (L = I w, so a caller may
+    // set w); cylinders keep the angular momentum.
     if (b.inertia[i].x() == b.inertia[i].z()) b.angular_momentum[i] = b.inertia[i].x() * w_old;
     const Vec3 L_old = b.angular_momentum[i];
-    const Quat q_old = b.orientation[i];
     const Vec3 w_new = advance_rotation(b.orientation[i], b.angular_momentum[i], b.inertia[i],
                                         t - td, dt, b.orientation0[i]);
     damping_work += fd.dot(0.5 * (v_old + v_new)) * dt + td.dot(0.5 * (w_old + w_new)) * dt;
@@ -395,19 +405,18 @@ void Simulation::integrate() {
     b.angular_velocity[i] = w_new;
     const Vec3 dx = v_new * dt;
     b.position[i] += dx;
-    // The turn's half-angle: tan(theta / 2) = |vec| / |w| of q q_old^-1 (atan2 was 2% of a step).
-    const Quat turn = b.orientation[i] * q_old.conjugate();
     body_damping_work_[i] = damping_work;
     // The leap-frog's kinetic energy at the whole step, 1/2 m v(n-1/2).v(n+1/2) (and its rotational
     // analogue): the quantity it conserves with the strain energy. The mean of the two half-step
     // energies would oscillate by m |a dt|^2 / 4.
     body_kinetic_[i] = 0.5 * b.mass[i] * v_old.dot(v_new) +
                        0.25 * (L_old.dot(w_new) + b.angular_momentum[i].dot(w_old));
-    // Instability: in a stable run nothing moves a twentieth of its size in one step.
+    // Instability: in a stable run nothing moves a twentieth of its size in one step, nor turns
+    // 0.05 rad (the turn is exp(w dt): its angle is |w| dt).
     const Real dx_limit = 0.05 * b.radius[i];
     body_jumped_[i] = !(dx.squaredNorm() < dx_limit * dx_limit) ||
-                      !(turn.vec().norm() < kTanHalfTurnLimit * std::abs(turn.w()));
-  });
+                      !(w_new.squaredNorm() * dt * dt < kTurnLimit * kTurnLimit);
+  }
   for (Index i = 0; i < b.size(); ++i)
     if (body_jumped_[i])
       fail(

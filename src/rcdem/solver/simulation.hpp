@@ -149,7 +149,8 @@ class Simulation {
   Energy energy_;
   std::vector<Real> plate_force_prev_, plate_displacement_prev_;
   std::vector<Real> body_damping_work_, body_kinetic_;
-  std::vector<std::uint8_t> body_jumped_;
+  std::vector<std::int64_t> body_jumped_;
+  Index spheres_ = 0;  // bodies [0, spheres_) take advance_spheres()
   // Every body's orientation as a matrix, formed at the start of each step for the contact loops
   // (derived from the orientations: not part of a checkpoint).
   std::vector<Eigen::Matrix3d> rotation_, rotation_prev_;

@@ -1,0 +1,27 @@
+#pragma once
+// One leap-frog step of the concrete particles (SPEC 6), the bulk of the bodies: isotropic
+// inertia, not driven. The same update as Simulation::integrate()'s general loop (Cundall's local
+// damping, L += T dt, q <- exp(w dt) q, the leap-frog kinetic energy), written on plain scalars
+// so that GCC runs it 8 bodies at a time: the general loop, with its branches for cylinders and
+// pulled bars and its quaternion products through Eigen, was a fifth of an elastic step.
+#include <cstdint>
+
+#include "rcdem/core/types.hpp"
+#include "rcdem/state/bodies.hpp"
+
+namespace rcdem {
+
+struct SphereStepOutputs {
+  Real* damping_work;     // per body: the energy damping removed this step [J]
+  Real* kinetic;          // per body: 1/2 m v(n-1/2).v(n+1/2) and its rotational analogue [J]
+  std::int64_t* jumped;   // per body, 0 or 1: moved more than 0.05 radius or turned 0.05 rad
+                          // (a byte per body does not fit lanes of doubles)
+};
+
+// Bodies [begin, end), every one a sphere (inertia x = y = z) that is not driven. The turn
+// exp(w dt) comes from the small-angle series alone (core/small_angle.hpp): it holds well beyond
+// the turn that flags a body `jumped` (and stops the run).
+void advance_spheres(Bodies& b, Index begin, Index end, Real dt, Real damping,
+                     const SphereStepOutputs& out);
+
+}  // namespace rcdem
