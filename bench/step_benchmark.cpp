@@ -1,16 +1,18 @@
 // Times Simulation::step() on a scenario's specimen and turns the time into throughput and memory
 // bandwidth (issue: bench/ throughput and bandwidth, YADE side by side).
 //
-// Usage: rcdem_step_bench SCENARIO.toml STEPS [WARMUP=50]
+// Usage: rcdem_step_bench SCENARIO.toml STEPS [WARMUP=50] [REPEATS=1]
 //   Generates the specimen (not timed), runs WARMUP steps (not timed), then times STEPS calls of
-//   step() with steady_clock. Stop rules, history and snapshots are not involved (this is the step
-//   alone).
+//   step() with steady_clock, REPEATS times back to back, and reports the fastest repetition (on a
+//   shared machine the others carry its neighbours' load; bench/throughput.sh gives YADE the
+//   same). Stop rules, history and snapshots are not involved (this is the step alone).
 // Prints one line of key=value pairs (scenario, threads, bodies, contacts, local_points, steps,
 // seconds, steps_per_s, particle_steps_per_s, contact_steps_per_s, local_point_steps_per_s,
 // bytes_per_step, bytes_per_local_point, achieved_GBps, condensed_contacts: those evaluated from
 // their sums at the last step, contact/elastic_condensation.hpp; cpu_seconds: the process's CPU
 // time over the timed steps, all threads, idle spinning included: on a shared machine the steadier
-// figure at 1 thread) and a second line starting
+// figure at 1 thread; both of the fastest repetition), repeat_seconds (every repetition's) and a
+// second line starting
 // "# bytes:" with the breakdown of bytes_per_step (see bytes_per_step() below for the model and
 // every term).
 #include <chrono>
@@ -66,16 +68,20 @@ using rcdem::Vec3;
 //   energy ledger: the 2 dissipations      2 Real read        16
 //                                                           = 312
 // Per body (all bodies: concrete spheres and the bars' cylinders):
-//   contact loop: position, position0, angular_velocity  3 Vec3 read  72; orientation Quat read 32
+//   kinematics:   position Vec3 + orientation Quat read 56; rotation matrix (9 Real), position
+//                 copy (Vec3) and pose (BodyPoses: 8 Real, one line) write 160
+//   contact loop: pose read 64 (the condensed kernel); while some contacts go through their
+//                 points also position copy, position0, angular_velocity 3 Vec3 and the rotation
+//                 matrix read 144
 //   gather:       begin Index read 8; force, torque  2 Vec3 write  48
-//   integrate:    velocity, angular_velocity, angular_momentum, position  4 Vec3 read + write 192
-//                 orientation Quat read + write 64; orientation0 Quat read 32
-//                 force, torque, inertia  3 Vec3 read 72; mass Real read 8; radius Real read 8
-//                 driven  int64 read 8; damping_work, kinetic  2 Real write 16; jumped  uint8 write
-//                 1
-//   instability check: jumped read 1
+//   integrate (a sphere, solver/sphere_update.cpp; the few cylinders are not counted apart):
+//                 velocity, angular_velocity, position  3 Vec3 read + write 144; angular_momentum
+//                 Vec3 write 24; orientation Quat read + write 64; force, torque, inertia  3 Vec3
+//                 read 72; mass, radius  2 Real read 16; damping_work, kinetic  2 Real write 16;
+//                 jumped  int64 write 8
+//   instability check: jumped read 8
 //   energy ledger: damping_work, kinetic  2 Real read 16
-//                                                           = 578
+//                                                           = 704 (+ 144 with the point path)
 // Per plate contact (solver/plates.cpp; one per boundary face under a plate's face):
 //   evaluate: plate int r 4, particle Index r 8, point0 Vec3 r 24, constants r 32,
 //             state LocalPointState r+w 176, force + torque Vec3 w 48, strain + friction Real w 16,
@@ -128,12 +134,14 @@ ByteCount count_bytes(const rcdem::Simulation& sim) {
   // its points, and leaves its frame (normal, tangent: read + written) alone.
   b.per_condensed_contact =
       b.per_contact - 2 * 2 * V + rcdem::CondensedSums::kBytesPerContact + 2 * sizeof(std::uint8_t);
-  b.per_body = (3 * V + Q)    // contact loop
-               + (I + 2 * V)  // gather
-               + (4 * 2 * V + 2 * Q + Q + 3 * V + 2 * R + sizeof(std::int64_t) + 2 * R +
-                  sizeof(std::uint8_t))  // integrate
-               + sizeof(std::uint8_t)    // instability check
-               + 2 * R;                  // energy ledger
+  constexpr double J = sizeof(std::int64_t), P = rcdem::BodyPoses::kStride * R;
+  const bool point_path = sim.condensed_contacts() < sim.specimen().contacts.contact_count();
+  b.per_body = (V + Q + 9 * R + V + P)                     // kinematics
+               + P + (point_path ? 3 * V + 9 * R : 0.0)  // contact loop
+               + (I + 2 * V)                             // gather
+               + (3 * 2 * V + V + 2 * Q + 3 * V + 2 * R + 2 * R + J)  // integrate
+               + J                                                    // instability check
+               + 2 * R;                                               // energy ledger
   b.per_plate_contact = (sizeof(int) + I + V + LPC + 2 * LPS + 2 * V + 2 * R +
                          2 * sizeof(std::uint8_t) + 2 * V + Q)      // evaluate
                         + (sizeof(int) + V + sizeof(std::uint8_t))  // reaction sum
@@ -171,20 +179,23 @@ ByteCount count_bytes(const rcdem::Simulation& sim) {
 double bytes_per_step(const rcdem::Simulation& sim) { return count_bytes(sim).total(); }
 
 int main(int argc, char** argv) {
-  if (argc != 3 && argc != 4) {
-    std::fprintf(stderr, "usage: rcdem_step_bench SCENARIO.toml STEPS [WARMUP=50]\n");
+  if (argc < 3 || argc > 5) {
+    std::fprintf(stderr, "usage: rcdem_step_bench SCENARIO.toml STEPS [WARMUP=50] [REPEATS=1]\n");
     return 1;
   }
   const std::string path = argv[1];
-  long steps = 0, warmup = 50;
+  long steps = 0, warmup = 50, repeats = 1;
   try {
     steps = std::stol(argv[2]);
-    if (argc == 4) warmup = std::stol(argv[3]);
+    if (argc >= 4) warmup = std::stol(argv[3]);
+    if (argc >= 5) repeats = std::stol(argv[4]);
   } catch (const std::exception&) {
     steps = -1;
   }
-  if (steps <= 0 || warmup < 0) {
-    std::fprintf(stderr, "rcdem_step_bench: STEPS must be > 0 and WARMUP >= 0 (whole numbers)\n");
+  if (steps <= 0 || warmup < 0 || repeats <= 0) {
+    std::fprintf(stderr,
+                 "rcdem_step_bench: STEPS and REPEATS must be > 0 and WARMUP >= 0 (whole "
+                 "numbers)\n");
     return 1;
   }
   rcdem::Progress::set_quiet_default(true);  // no generation progress lines among the results
@@ -197,12 +208,21 @@ int main(int argc, char** argv) {
     // Warm-up: caches, pages, branch history; a long one loads the specimen into cracking, so
     // that the timed steps see damaged contacts (the default 50 leaves every contact elastic).
     for (long k = 0; k < warmup; ++k) sim.step();
-    const auto t0 = std::chrono::steady_clock::now();
-    const std::clock_t c0 = std::clock();
-    for (long k = 0; k < steps; ++k) sim.step();
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    const double cpu_seconds = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
+    double seconds = 0, cpu_seconds = 0;
+    std::string repeat_seconds;
+    for (long r = 0; r < repeats; ++r) {
+      const auto t0 = std::chrono::steady_clock::now();
+      const std::clock_t c0 = std::clock();
+      for (long k = 0; k < steps; ++k) sim.step();
+      const double s =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      const double cpu = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
+      repeat_seconds += (r ? "," : "") + std::to_string(s);
+      if (r == 0 || s < seconds) {
+        seconds = s;
+        cpu_seconds = cpu;
+      }
+    }
 
     int threads = 1;
 #if defined(_OPENMP)
@@ -218,10 +238,11 @@ int main(int argc, char** argv) {
         "scenario=%s threads=%d bodies=%.0f contacts=%.0f local_points=%.0f steps=%ld "
         "seconds=%.4f steps_per_s=%.3f particle_steps_per_s=%.4g contact_steps_per_s=%.4g "
         "local_point_steps_per_s=%.4g bytes_per_step=%.0f bytes_per_local_point=%.1f "
-        "achieved_GBps=%.3f setup_seconds=%.2f condensed_contacts=%.0f cpu_seconds=%.4f\n",
+        "achieved_GBps=%.3f setup_seconds=%.2f condensed_contacts=%.0f cpu_seconds=%.4f "
+        "repeat_seconds=%s\n",
         path.c_str(), threads, bodies, contacts, points, steps, seconds, rate, rate * bodies,
         rate * contacts, rate * points, bytes, bytes / points, bytes * rate * 1e-9, setup_s,
-        bc.condensed_contacts, cpu_seconds);
+        bc.condensed_contacts, cpu_seconds, repeat_seconds.c_str());
     std::printf(
         "# bytes: per_local_point=%.0f x %.0f visited = %.4g; per_contact=%.0f x %.0f + "
         "condensed %.0f x %.0f = %.4g; "

@@ -6,13 +6,13 @@
 #   bash bench/throughput.sh [STEPS=500] [BUILD_DIR=build]
 #     1. header: date, nproc, CPU model;
 #     2. STREAM triad (build/bench/rcdem_stream) at each rcdem thread count;
-#     3. rcdem_step_bench, STEPS timed steps after 50 warm-up ones, on the 160 mm cube
+#     3. rcdem_step_bench, STEPS timed steps after 50 warm-up ones (best of REPEATS), on the 160 mm cube
 #        (examples/uniaxial/compression.toml, used as is: the step bench ignores stop rules) and on
 #        the AN4 NL-B beam (examples/three_point_bending/study/AN4_NL-B.toml, in place: it includes
 #        a file by a relative path), at 1 and 2 threads: particle-, contact-, local-point-steps/s,
 #        counted bytes per step (the "# bytes:" line), achieved GB/s and fraction_of_stream;
-#     4. YADE CpmMat (bench/yade_cpm.py) on as many spheres as the cube has particles, STEPS steps,
-#        at THREADS threads;
+#     4. YADE CpmMat (bench/yade_cpm.py) on as many spheres as the cube has particles, STEPS steps
+#        (best of REPEATS), at THREADS threads;
 #     5. last line: ratio_contact_steps_vs_yade=<rcdem cube contact-steps/s / YADE's>, both at
 #        THREADS threads.
 #   bash bench/throughput.sh --scaling [STEPS=200] [BUILD_DIR=build]
@@ -21,7 +21,8 @@
 #     particle.
 # Environment (all optional): THREADS (2: the YADE comparison and the scaling runs), RCDEM_THREADS
 # ("1 2"), STREAM_N (4e7 elements per array: 3 x 320 MB), YADE_N (the cube's particle count),
-# YADE_STEPS (STEPS), SKIP_BEAM=1, SCALING_SIZES. A quick end-to-end check:
+# YADE_STEPS (STEPS), REPEATS (3: each peer's fastest of 3 back-to-back timings; this shared
+# machine's neighbours slow a run by up to 2x), SKIP_BEAM=1, SCALING_SIZES. A quick end-to-end check:
 #   STREAM_N=1e7 RCDEM_THREADS=1 THREADS=1 SKIP_BEAM=1 YADE_N=2000 bash bench/throughput.sh 20
 # Build first: ninja -C build rcdem_stream rcdem_step_bench. YADE: Debian's yade (/usr/bin/yade).
 set -euo pipefail
@@ -36,6 +37,7 @@ K=${1:-$([[ $SCALING == 1 ]] && echo 200 || echo 500)}
 BUILD=${2:-build}
 THREADS=${THREADS:-2}
 RCDEM_THREADS=${RCDEM_THREADS:-"1 2"}
+REPEATS=${REPEATS:-3}
 STREAM_N=${STREAM_N:-4e7}
 STEP_BENCH="$BUILD/bench/rcdem_step_bench"
 STREAM="$BUILD/bench/rcdem_stream"
@@ -63,13 +65,13 @@ calc() { awk "BEGIN { printf \"%.4g\", $1 }"; }
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
-echo "date: $(date -u +%F)  nproc: $(nproc)  cpu: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')  steps: $K"
+echo "date: $(date -u +%F)  nproc: $(nproc)  cpu: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')  steps: $K  repeats: $REPEATS (best of each)"
 
 if [[ $SCALING == 1 ]]; then
   echo "scaling: rcdem_step_bench on cubes, $THREADS thread(s), $K steps each"
   for s in ${SCALING_SIZES:-0.07 0.11 0.16}; do
     sed -e "s/^size = .*/size = [$s, $s, $s]/" examples/uniaxial/compression.toml > "$tmp/cube_$s.toml"
-    line=$(OMP_NUM_THREADS=$THREADS "$STEP_BENCH" "$tmp/cube_$s.toml" "$K" | grep -v '^#')
+    line=$(OMP_NUM_THREADS=$THREADS "$STEP_BENCH" "$tmp/cube_$s.toml" "$K" 50 "$REPEATS" | grep -v '^#')
     bodies=$(kv bodies "$line")
     secs=$(kv seconds "$line")
     echo "size_m=$s bodies=$bodies contacts=$(kv contacts "$line") local_points=$(kv local_points "$line")" \
@@ -99,7 +101,7 @@ for entry in "${scenarios[@]}"; do
   list=$RCDEM_THREADS
   [[ $name == cube && " $list " != *" $THREADS "* ]] && list="$list $THREADS"
   for t in $list; do
-    out=$(OMP_NUM_THREADS=$t "$STEP_BENCH" "$file" "$K")
+    out=$(OMP_NUM_THREADS=$t "$STEP_BENCH" "$file" "$K" 50 "$REPEATS")
     echo "$out"
     line=$(grep -v '^#' <<<"$out")
     gbps=$(kv achieved_GBps "$line")
@@ -113,8 +115,8 @@ for entry in "${scenarios[@]}"; do
 done
 
 N=${YADE_N:-$cube_bodies}
-echo "yade: $YADE -n -x -j $THREADS bench/yade_cpm.py $N ${YADE_STEPS:-$K}"
-if ! "$YADE" -n -x -j "$THREADS" bench/yade_cpm.py "$N" "${YADE_STEPS:-$K}" > "$tmp/yade.log" 2>&1; then
+echo "yade: $YADE -n -x -j $THREADS bench/yade_cpm.py $N ${YADE_STEPS:-$K} $REPEATS"
+if ! "$YADE" -n -x -j "$THREADS" bench/yade_cpm.py "$N" "${YADE_STEPS:-$K}" "$REPEATS" > "$tmp/yade.log" 2>&1; then
   cat "$tmp/yade.log" >&2
   echo "yade failed" >&2
   exit 1
