@@ -43,6 +43,15 @@ def bars_of(run_dir):
     return bars
 
 
+def read_rows(path, what, convert):
+    """Every row of a CSV file through `convert`; one message and exit 1 if it cannot be read."""
+    try:
+        with open(path, newline="") as f:
+            return [convert(row) for row in csv.DictReader(f)]
+    except (OSError, KeyError, ValueError) as e:
+        fail(f"{path}: cannot read {what} ({e})")
+
+
 def distance_to_axis(p, start, end):
     d = [e - s for s, e in zip(start, end)]
     length2 = sum(c * c for c in d)
@@ -64,27 +73,13 @@ def main():
         bars = bars_of(run)
         if not bars:
             fail(f"{run}/scenario.toml: no bars")
-        points = []
-        path = os.path.join(run, "broken_points.csv")
-        try:
-            with open(path, newline="") as f:
-                for row in csv.DictReader(f):
-                    p = (float(row["x_m"]), float(row["y_m"]), float(row["z_m"]))
-                    near = any(distance_to_axis(p, s, e) < args.radius_over_d * dia +
-                               args.margin * 1e-3 for _, s, e, dia in bars)
-                    points.append((abs(float(row["deflection_m"])) * 1e3, near,
-                                   float(row["area_m2"])))
-        except (OSError, KeyError, ValueError) as e:
-            fail(f"{path}: cannot read the broken points ({e})")
-        history = []
-        path = os.path.join(run, "history.csv")
-        try:
-            with open(path, newline="") as f:
-                for row in csv.DictReader(f):
-                    history.append((abs(float(row["load_displacement_m"])) * 1e3,
-                                    int(float(row["broken_interface_points"]))))
-        except (OSError, KeyError, ValueError) as e:
-            fail(f"{path}: cannot read the history ({e})")
+        points = read_rows(os.path.join(run, "broken_points.csv"), "the broken points", lambda row: (
+            abs(float(row["deflection_m"])) * 1e3,
+            any(distance_to_axis((float(row["x_m"]), float(row["y_m"]), float(row["z_m"])), s, e)
+                < args.radius_over_d * dia + args.margin * 1e-3 for _, s, e, dia in bars),
+            float(row["area_m2"])))
+        history = read_rows(os.path.join(run, "history.csv"), "the history", lambda row: (
+            abs(float(row["load_displacement_m"])) * 1e3, int(float(row["broken_interface_points"]))))
         for at in args.at:
             near = [a for d, n, a in points if d <= at and n]
             far = [a for d, n, a in points if d <= at and not n]
