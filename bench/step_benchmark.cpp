@@ -136,9 +136,9 @@ ByteCount count_bytes(const rcdem::Simulation& sim) {
       b.per_contact - 2 * 2 * V + rcdem::CondensedSums::kBytesPerContact + 2 * sizeof(std::uint8_t);
   constexpr double J = sizeof(std::int64_t), P = rcdem::BodyPoses::kStride * R;
   const bool point_path = sim.condensed_contacts() < sim.specimen().contacts.contact_count();
-  b.per_body = (V + Q + 9 * R + V + P)                     // kinematics
-               + P + (point_path ? 3 * V + 9 * R : 0.0)  // contact loop
-               + (I + 2 * V)                             // gather
+  b.per_body = (V + Q + 9 * R + V + P)                                // kinematics
+               + P + (point_path ? 3 * V + 9 * R : 0.0)               // contact loop
+               + (I + 2 * V)                                          // gather
                + (3 * 2 * V + V + 2 * Q + 3 * V + 2 * R + 2 * R + J)  // integrate
                + J                                                    // instability check
                + 2 * R;                                               // energy ledger
@@ -214,8 +214,7 @@ int main(int argc, char** argv) {
       const auto t0 = std::chrono::steady_clock::now();
       const std::clock_t c0 = std::clock();
       for (long k = 0; k < steps; ++k) sim.step();
-      const double s =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       const double cpu = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
       repeat_seconds += (r ? "," : "") + std::to_string(s);
       if (r == 0 || s < seconds) {

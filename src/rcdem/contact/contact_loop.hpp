@@ -205,8 +205,8 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
   }
   assert(in.pose && "the condensed kernel reads the bodies' poses");
   cond->any_condensed = true;  // cleared by the catch-up; harmless if none was
-  const CondensedInputs ci{cond->sums, in.net.particle_a.data(), in.net.particle_b.data(),
-                           in.pose, in.net.contact_count()};
+  const CondensedInputs ci{cond->sums, in.net.particle_a.data(), in.net.particle_b.data(), in.pose,
+                           in.net.contact_count()};
   parallel_for_blocks(in.net.contact_count(), CondensedBlock::kSize, [&](Index begin, Index end) {
     CondensedBlock block;
     evaluate_condensed_block(ci, begin, end - begin, cs, block);

@@ -133,8 +133,7 @@ void evaluate_condensed_block(const CondensedInputs& in, Index begin, Index coun
     const Real rc[3] = {cx[l], cy[l], cz[l]};
     Real u0[3], uc[3], ac[3];
     for (int i = 0; i < 3; ++i) {
-      u0[i] = offset_displacement(dx[i], rb[i], rb[i + 3], rb[i + 6], r0x[l],
-                                  r0y[l], r0z[l]);
+      u0[i] = offset_displacement(dx[i], rb[i], rb[i + 3], rb[i + 6], r0x[l], r0y[l], r0z[l]);
       uc[i] = u0[i] + d[i] * rc[0] + d[i + 3] * rc[1] + d[i + 6] * rc[2];
       ac[i] = 0.5 * u0[i] + sm[i] * rc[0] + sm[i + 3] * rc[1] + sm[i + 6] * rc[2];
     }

@@ -13,11 +13,6 @@
 
 namespace rcdem {
 
-namespace {
-// A body that turns more than 0.05 rad in one step is unstable.
-constexpr Real kTurnLimit = 0.05;
-}  // namespace
-
 Simulation::Simulation(const Scenario& sc, Specimen specimen)
     : specimen_(std::move(specimen)),
       bodies_(bodies_from_particles(specimen_.particles, sc.solver.density, sc.solver.mass_scaling,
@@ -415,7 +410,7 @@ void Simulation::integrate() {
     // 0.05 rad (the turn is exp(w dt): its angle is |w| dt).
     const Real dx_limit = 0.05 * b.radius[i];
     body_jumped_[i] = !(dx.squaredNorm() < dx_limit * dx_limit) ||
-                      !(w_new.squaredNorm() * dt * dt < kTurnLimit * kTurnLimit);
+                      !(w_new.squaredNorm() * dt * dt < kStableTurnLimit * kStableTurnLimit);
   }
   for (Index i = 0; i < b.size(); ++i)
     if (body_jumped_[i])

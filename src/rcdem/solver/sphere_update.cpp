@@ -28,8 +28,8 @@ void advance_spheres(Bodies& b, Index begin, Index end, Real dt, Real damping,
   Real* damping_work_out = out.damping_work + begin;
   Real* kinetic_out = out.kinetic + begin;
   std::int64_t* jumped_out = out.jumped + begin;
-  constexpr Real kTurnLimit = 0.05;  // rad in one step: Simulation's instability check
-  static_assert(0.25 * kTurnLimit * kTurnLimit < 1e-2, "the series must cover a stable turn");
+  static_assert(0.25 * kStableTurnLimit * kStableTurnLimit < 1e-2,
+                "the series must cover a stable turn");
 #pragma omp simd
   for (Index i = 0; i < end - begin; ++i) {
     const Real inv_m = dt / mass[i];
@@ -82,7 +82,8 @@ void advance_spheres(Bodies& b, Index begin, Index end, Real dt, Real damping,
     // Instability: in a stable run nothing moves a twentieth of its size or turns 0.05 rad in
     // one step (a NaN fails both).
     const Real dx_limit = 0.05 * radius[i];
-    jumped_out[i] = !(dx_sq < dx_limit * dx_limit) | !(w_sq * dt * dt < kTurnLimit * kTurnLimit);
+    jumped_out[i] =
+        !(dx_sq < dx_limit * dx_limit) | !(w_sq * dt * dt < kStableTurnLimit * kStableTurnLimit);
   }
 }
 

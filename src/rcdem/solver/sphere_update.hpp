@@ -11,11 +11,14 @@
 
 namespace rcdem {
 
+// A body that turns more than this in one step is unstable (Simulation stops the run) [rad].
+inline constexpr Real kStableTurnLimit = 0.05;
+
 struct SphereStepOutputs {
-  Real* damping_work;     // per body: the energy damping removed this step [J]
-  Real* kinetic;          // per body: 1/2 m v(n-1/2).v(n+1/2) and its rotational analogue [J]
-  std::int64_t* jumped;   // per body, 0 or 1: moved more than 0.05 radius or turned 0.05 rad
-                          // (a byte per body does not fit lanes of doubles)
+  Real* damping_work;    // per body: the energy damping removed this step [J]
+  Real* kinetic;         // per body: 1/2 m v(n-1/2).v(n+1/2) and its rotational analogue [J]
+  std::int64_t* jumped;  // per body, 0 or 1: moved more than 0.05 radius or turned 0.05 rad
+                         // (a byte per body does not fit lanes of doubles)
 };
 
 // Bodies [begin, end), every one a sphere (inertia x = y = z) that is not driven. The turn
