@@ -23,8 +23,9 @@ void parallel_for(std::int64_t n, Body&& body) {
 
 // The same over blocks of `block` consecutive items, body(begin, end), handed out as threads
 // become free: for loops whose items cost unequal amounts (the contacts of a cracked region visit
-// their points, the others only their sums). The blocks are fixed by the item numbers, so which
-// thread runs a block changes nothing in its results.
+// their points, the others only their sums), 4 blocks at a time, so that a thread's next block is
+// usually its own (the condensed contacts' kernel prefetches into it). The blocks are fixed by the
+// item numbers, so which thread runs a block changes nothing in its results.
 template <typename Body>
 void parallel_for_blocks(std::int64_t n, std::int64_t block, Body&& body) {
   const std::int64_t blocks = (n + block - 1) / block;

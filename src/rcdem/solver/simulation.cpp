@@ -374,8 +374,8 @@ void Simulation::integrate() {
     Vec3 f = b.force[i], t = b.torque[i];
     Vec3 fd, td;
     for (int k = 0; k < 3; ++k) {
-      fd[k] = alpha * std::abs(f[k]) * (v_old[k] > 0 ? 1.0 : v_old[k] < 0 ? -1.0 : 0.0);
-      td[k] = alpha * std::abs(t[k]) * (w_old[k] > 0 ? 1.0 : w_old[k] < 0 ? -1.0 : 0.0);
+      fd[k] = cundall_damping(alpha, f[k], v_old[k]);
+      td[k] = cundall_damping(alpha, t[k], w_old[k]);
     }
     Vec3 v_new = v_old + (f - fd) * (dt / b.mass[i]);
     const std::int64_t driven = driven_[static_cast<std::size_t>(i)];

@@ -6,11 +6,6 @@
 
 namespace rcdem {
 
-namespace {
-// -1, 0 or +1: the direction Cundall's damping force opposes.
-[[gnu::always_inline]] inline Real sign_of(Real v) { return v > 0 ? 1.0 : v < 0 ? -1.0 : 0.0; }
-}  // namespace
-
 void advance_spheres(Bodies& b, Index begin, Index end, Real dt, Real damping,
                      const SphereStepOutputs& out) {
   // Raw components: Vec3 is 3 doubles, Eigen's quaternion 4 (x, y, z, w).
@@ -38,9 +33,8 @@ void advance_spheres(Bodies& b, Index begin, Index end, Real dt, Real damping,
     Real damping_work = 0, v_dot = 0, lw = 0, dx_sq = 0, w_sq = 0;
     for (int k = 0; k < 3; ++k) {
       const Real v_old = v[3 * i + k], w_old = w[3 * i + k];
-      // Local non-viscous damping (Cundall): alpha |F| against the velocity.
-      const Real fd = damping * std::abs(f[3 * i + k]) * sign_of(v_old);
-      const Real td = damping * std::abs(t[3 * i + k]) * sign_of(w_old);
+      const Real fd = cundall_damping(damping, f[3 * i + k], v_old);
+      const Real td = cundall_damping(damping, t[3 * i + k], w_old);
       v_new[k] = v_old + (f[3 * i + k] - fd) * inv_m;
       // Spheres keep w as their state: L = I w, then L += T dt, w = L / I (rigid_rotation.hpp).
       l_old[k] = inertia_i * w_old;

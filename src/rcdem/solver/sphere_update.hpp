@@ -4,6 +4,7 @@
 // damping, L += T dt, q <- exp(w dt) q, the leap-frog kinetic energy), written on plain scalars
 // so that GCC runs it 8 bodies at a time: the general loop, with its branches for cylinders and
 // pulled bars and its quaternion products through Eigen, was a fifth of an elastic step.
+#include <cmath>
 #include <cstdint>
 
 #include "rcdem/core/types.hpp"
@@ -13,6 +14,12 @@ namespace rcdem {
 
 // A body that turns more than this in one step is unstable (Simulation stops the run) [rad].
 inline constexpr Real kStableTurnLimit = 0.05;
+
+// Cundall's local non-viscous damping (SPEC 6): alpha |F| against the velocity, per component
+// (the same for a torque against the angular velocity). Shared with the cylinders' loop.
+[[gnu::always_inline]] inline Real cundall_damping(Real alpha, Real force, Real velocity) {
+  return alpha * std::abs(force) * (velocity > 0 ? 1.0 : velocity < 0 ? -1.0 : 0.0);
+}
 
 struct SphereStepOutputs {
   Real* damping_work;    // per body: the energy damping removed this step [J]

@@ -14,7 +14,8 @@
 
 namespace rcdem {
 
-// std::allocator aligns to 16 bytes: a pose must not straddle two cache lines.
+// std::allocator aligns to 16 bytes and Eigen::aligned_allocator to the vector width (16-64
+// bytes, by the build's ISA): a pose must not straddle two cache lines on any build.
 template <typename T, std::size_t kAlign>
 struct AlignedAllocator {
   using value_type = T;
