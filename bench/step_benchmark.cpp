@@ -1,8 +1,11 @@
 // Times Simulation::step() on a scenario's specimen and turns the time into throughput and memory
 // bandwidth (issue: bench/ throughput and bandwidth, YADE side by side).
 //
-// Usage: rcdem_step_bench SCENARIO.toml STEPS [WARMUP=50] [REPEATS=1]
-//   Generates the specimen (not timed), runs WARMUP steps (not timed), then times STEPS calls of
+// Usage: rcdem_step_bench SCENARIO.toml STEPS [WARMUP=50] [REPEATS=1] [--checkpoint FILE]
+//   Generates the specimen (not timed); with --checkpoint, restores the state a run of that
+//   scenario saved (io/checkpoint: a beam cracked half way through, say; the specimen must be the
+//   same, the scenario's hash is not checked, so a copy of the scenario with other solver or
+//   output keys serves); runs WARMUP steps (not timed), then times STEPS calls of
 //   step() with steady_clock, REPEATS times back to back, and reports the fastest repetition (on a
 //   shared machine the others carry its neighbours' load; bench/throughput.sh gives YADE the
 //   same). Stop rules, history and snapshots are not involved (this is the step alone).
@@ -21,6 +24,7 @@
 #include <ctime>
 #include <exception>
 #include <string>
+#include <vector>
 
 #if defined(_OPENMP)
 #include <omp.h>
@@ -28,6 +32,7 @@
 
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
+#include "rcdem/io/checkpoint.hpp"
 #include "rcdem/io/scenario.hpp"
 #include "rcdem/solver/simulation.hpp"
 #include "rcdem/specimens/specimen.hpp"
@@ -179,16 +184,32 @@ ByteCount count_bytes(const rcdem::Simulation& sim) {
 double bytes_per_step(const rcdem::Simulation& sim) { return count_bytes(sim).total(); }
 
 int main(int argc, char** argv) {
-  if (argc < 3 || argc > 5) {
-    std::fprintf(stderr, "usage: rcdem_step_bench SCENARIO.toml STEPS [WARMUP=50] [REPEATS=1]\n");
+  const char* usage =
+      "usage: rcdem_step_bench SCENARIO.toml STEPS [WARMUP=50] [REPEATS=1] [--checkpoint FILE]\n";
+  std::vector<std::string> args;
+  std::string checkpoint;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--checkpoint") {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "rcdem_step_bench: --checkpoint needs a file\n%s", usage);
+        return 1;
+      }
+      checkpoint = argv[++i];
+    } else {
+      args.push_back(a);
+    }
+  }
+  if (args.size() < 2 || args.size() > 4) {
+    std::fprintf(stderr, "%s", usage);
     return 1;
   }
-  const std::string path = argv[1];
+  const std::string path = args[0];
   long steps = 0, warmup = 50, repeats = 1;
   try {
-    steps = std::stol(argv[2]);
-    if (argc >= 4) warmup = std::stol(argv[3]);
-    if (argc >= 5) repeats = std::stol(argv[4]);
+    steps = std::stol(args[1]);
+    if (args.size() >= 3) warmup = std::stol(args[2]);
+    if (args.size() >= 4) repeats = std::stol(args[3]);
   } catch (const std::exception&) {
     steps = -1;
   }
@@ -203,6 +224,12 @@ int main(int argc, char** argv) {
     const auto g0 = std::chrono::steady_clock::now();
     const rcdem::Scenario sc = rcdem::load_scenario(path);
     rcdem::Simulation sim(sc, rcdem::build_specimen(sc));
+    if (!checkpoint.empty()) {
+      // Only the simulation's sections are read; the specimen's fingerprint is still checked.
+      const auto header = rcdem::io::inspect_checkpoint(checkpoint);
+      rcdem::io::restore_checkpoint(checkpoint, rcdem::io::CheckpointParts{&sim},
+                                    header.scenario_hash);
+    }
     const double setup_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - g0).count();
     // Warm-up: caches, pages, branch history; a long one loads the specimen into cracking, so
