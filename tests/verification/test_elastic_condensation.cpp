@@ -268,6 +268,33 @@ TEST(ElasticCondensation, ReadingTheStateChangesNothingThatFollows) {
   EXPECT_EQ(quiet.broken, read.broken);
 }
 
+// The strain energy of condensed contacts from their sums (condensed_strain_energy, what a history
+// row reads) equals their points' energy once their histories are brought up to date, before and
+// after cracking, in tension and in compression.
+TEST(ElasticCondensation, StrainEnergyFromTheSumsEqualsThePoints) {
+  for (const Real velocity : {0.02, -0.05}) {
+    const Scenario sc = bl_cube(velocity, true);
+    Simulation sim(sc, build_specimen(sc));
+    int checked = 0;
+    for (int s = 1; s <= 4000; ++s) {
+      sim.step();
+      if (s % 500 != 0) continue;
+      const Index condensed = sim.condensed_contacts();
+      ASSERT_GT(condensed, 0) << "some contacts are condensed at step " << s;
+      const Real from_sums = sim.strain_energy();
+      (void)sim.contacts();  // the catch-up: every point's history current
+      ASSERT_EQ(sim.condensed_contacts(), 0);
+      const Real from_points = sim.strain_energy();
+      ASSERT_GT(from_points, 0);
+      EXPECT_NEAR(from_sums, from_points, 1e-12 * from_points)
+          << "velocity " << velocity << ", step " << s << ", " << condensed << " condensed";
+      ++checked;
+    }
+    EXPECT_EQ(checked, 8);
+    EXPECT_GT(sim.damaged_points() + sim.broken_points(), 0) << "velocity " << velocity;
+  }
+}
+
 // Whole runs, condensation on and off, through the peak and into softening, in tension and in
 // compression (friction and shear caps). The two differ by rounding at first (the sums are taken
 // in another order), and the local damping's sign(v) (Cundall) amplifies any rounding difference

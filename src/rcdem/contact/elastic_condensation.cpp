@@ -184,6 +184,27 @@ void evaluate_condensed_block(const CondensedInputs& in, Index begin, Index coun
   }
 }
 
+Real condensed_strain_energy(const CondensedSums& s, Index c, const Vec3& xa, const Vec3& xb,
+                             const Eigen::Matrix3d& ra, const Eigen::Matrix3d& rb) {
+  const auto i = static_cast<std::size_t>(c);
+  const Vec3 dx = xb - xa;
+  const Vec3 n = dx / std::sqrt(dx.squaredNorm());  // the kernel's normal
+  const Vec3 r0(s.offset0[0][i], s.offset0[1][i], s.offset0[2][i]);
+  const Vec3 rc(s.centroid[0][i], s.centroid[1][i], s.centroid[2][i]);
+  Vec3 u0;
+  for (int d = 0; d < 3; ++d)
+    u0[d] = offset_displacement(dx[d], rb(d, 0), rb(d, 1), rb(d, 2), r0.x(), r0.y(), r0.z());
+  const Eigen::Matrix3d dm = rb - ra;
+  const Vec3 uc = u0 + dm * rc;
+  Eigen::Matrix3d j;
+  j << s.j[0][i], s.j[3][i], s.j[4][i], s.j[3][i], s.j[1][i], s.j[5][i], s.j[4][i], s.j[5][i],
+      s.j[2][i];
+  const Eigen::Matrix3d djd = dm * j * dm.transpose();
+  const Real k = s.k_n[i], alpha = s.alpha[i], ucn = n.dot(uc);
+  return 0.5 * ((1 - alpha) * (k * ucn * ucn + n.dot(djd * n)) +
+                alpha * (k * uc.squaredNorm() + djd.trace()));
+}
+
 Index ElasticCondensation::condensed_count() const {
   return static_cast<Index>(std::count(condensed.begin(), condensed.end(), std::uint8_t{1}));
 }

@@ -70,11 +70,11 @@ struct ElasticCondensation {
 
 // The condensed evaluation of a block of consecutive contacts (formulas above), written as plain
 // arithmetic on scalars so that GCC runs it in SIMD lanes (8 contacts at a time with AVX-512): the
-// bodies' poses are gathered and their rotation matrices rebuilt in the lanes. Every contact of the block is computed and
-// its force, torques and zero dissipation stored, so no lane branches; `below_limits` says which
-// ones the caller may keep (with `intact`); it evaluates the others through their points, which
-// overwrites what was stored. A block covers fixed contact numbers, so a contact is computed by
-// the same instructions whatever the thread count.
+// bodies' poses are gathered and their rotation matrices rebuilt in the lanes. Every contact of the
+// block is computed and its force, torques and zero dissipation stored, so no lane branches;
+// `below_limits` says which ones the caller may keep (with `intact`); it evaluates the others
+// through their points, which overwrites what was stored. A block covers fixed contact numbers, so
+// a contact is computed by the same instructions whatever the thread count.
 struct CondensedBlock {
   static constexpr Index kSize = 128;
   std::int64_t below_limits[kSize];  // 0 or 1: no point near an elastic limit
@@ -87,6 +87,15 @@ struct CondensedInputs {
   const Real* pose;  // the bodies' centres and orientations at the evaluation (BodyPoses)
   Index contact_count;
 };
+
+// The elastic energy held by condensed contact c's points (sum of kn u_n^2 / 2 + ks |u_s|^2 / 2)
+// at the kinematics of the evaluation that condensed it (A's and B's centres and rotations), from
+// its sums: with u = u_c + D rho over the points and sum kn rho = 0,
+//   E = ((1 - alpha) (K u_cn^2 + n^T D J D^T n) + alpha (K |u_c|^2 + tr(D J D^T))) / 2,
+// the points' own energy to rounding, without bringing their histories up to date (a history row
+// asks for the strain energy every ~50 steps; the catch-up it took cost ~5x a condensed step).
+Real condensed_strain_energy(const CondensedSums& sums, Index c, const Vec3& xa, const Vec3& xb,
+                             const Eigen::Matrix3d& ra, const Eigen::Matrix3d& rb);
 
 // Contacts [begin, begin + count), count <= CondensedBlock::kSize; writes their entries of
 // force_b, torque_b, torque_a, dissipated_damage, dissipated_friction.

@@ -8,13 +8,13 @@
 namespace rcdem::io {
 
 CrackRecord::CrackRecord(const Simulation& sim)
-    : broken_(static_cast<std::size_t>(sim.contacts().point.size()), std::uint8_t{0}) {}
+    : broken_(sim.point_damage().size(), std::uint8_t{0}) {}
 
 void CrackRecord::update(const Simulation& sim, Real deflection, Real load) {
-  const auto& pts = sim.contacts().point;
+  const std::vector<Real>& damage = sim.point_damage();  // no catch-up needed
   const ContactNetwork& net = sim.specimen().contacts;
-  for (Index m = 0; m < pts.size(); ++m) {
-    if (broken_[m] || pts.damage[m] < 1.0) continue;
+  for (std::size_t m = 0; m < damage.size(); ++m) {
+    if (broken_[m] || damage[m] < 1.0) continue;
     broken_[m] = 1;
     rows_.push_back({net.point_position0[m], net.point_area[m], sim.steps(), deflection, load});
   }
@@ -40,7 +40,8 @@ nlohmann::json CrackRecord::first_cracking() const {
     ++count;
     centroid += r.area * r.position;
     area += r.area;
-    if (positions.size() < 50) positions.push_back({r.position.x(), r.position.y(), r.position.z()});
+    if (positions.size() < 50)
+      positions.push_back({r.position.x(), r.position.y(), r.position.z()});
   }
   centroid /= area;
   return {{"step", step},

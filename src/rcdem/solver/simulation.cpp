@@ -430,8 +430,24 @@ Real points_strain_energy(const ContactNetwork& net, const ContactState& cs) {
 }
 }  // namespace
 
+Real Simulation::concrete_strain_energy() const {
+  const ContactNetwork& net = specimen_.contacts;
+  if (!condensation_.any_condensed) return points_strain_energy(net, contacts_);
+  // Condensed contacts from their sums at the last evaluation's kinematics (their histories are
+  // stale), the others from their points.
+  Real e = 0.0;
+  for (Index c = 0; c < net.contact_count(); ++c) {
+    const Index a = net.particle_a[c], b = net.particle_b[c];
+    e += condensation_.condensed[static_cast<std::size_t>(c)]
+             ? condensed_strain_energy(condensation_.sums, c, position_eval_[a], position_eval_[b],
+                                       rotation_[a], rotation_[b])
+             : contacts_.strain_energy(net, c);
+  }
+  return e;
+}
+
 Real Simulation::strain_energy() const {
-  Real strain = points_strain_energy(specimen_.contacts, contacts());
+  Real strain = concrete_strain_energy();
   for (Index j = 0; j < plate_contacts_.size(); ++j) strain += plate_contacts_.strain_energy[j];
   for (std::size_t k = 0; k < interface_states_.size(); ++k)
     strain += points_strain_energy(specimen_.interfaces[k].net, interface_states_[k]);

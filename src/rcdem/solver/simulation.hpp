@@ -84,7 +84,7 @@ class Simulation {
   // The ledger now. The strain energy is a function of the state, summed here on demand (the
   // loop does not compute it every step: two divisions per local point).
   Energy energy() const;
-  Real strain_energy() const;
+  Real strain_energy() const;  // without bringing condensed contacts' histories up to date
   // The ledger's running sums (work, kinetic energy, dissipation) without the strain energy
   // (left 0): no sweep over the local points, for use every step.
   const Energy& ledger() const { return energy_; }
@@ -103,6 +103,9 @@ class Simulation {
   Index yielded_nodes() const;
   Real max_axial_force() const;  // largest |N| over the nodes
 
+  // Every concrete local point's damage D, current without a catch-up (a condensed contact's points
+  // are intact: their stale histories hold D = 0, as the current ones would).
+  const std::vector<Real>& point_damage() const { return contacts_.point.damage; }
   Index damaged_points() const;  // 0 < D < 1, concrete contacts
   Index broken_points() const;   // D = 1, concrete contacts
   Index broken_interface_points() const;
@@ -117,6 +120,7 @@ class Simulation {
                                 const std::vector<Eigen::Matrix3d>& rotation) const;
   void gather_forces();
   void integrate();
+  Real concrete_strain_energy() const;
 
   Specimen specimen_;
   Bodies bodies_;
