@@ -23,8 +23,9 @@
 // that would come near a limit send the contact back to the point loop, which finds exactly what it
 // would have found had it visited the points every step (the limits are not crossed in between, and
 // an intact point's forces do not depend on its stored history). A condensed contact's point
-// histories are brought up to date only when someone reads them (Simulation::contacts(): outputs,
-// the strain energy, checkpoints), from the kinematics of the step's evaluation.
+// histories are brought up to date only when someone reads them (Simulation::contacts(): snapshots,
+// checkpoints), from the kinematics of the step's evaluation; the strain energy a history row
+// reads comes from the sums (condensed_strain_energy below) and the damage needs nothing (D = 0).
 #include <array>
 #include <cstdint>
 #include <vector>
