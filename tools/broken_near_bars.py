@@ -11,7 +11,8 @@ history.csv), counts the concrete local points fully broken (D = 1) by each defl
 their facet areas, and the interface points broken by then (history.csv). One line per run and
 deflection, key=value pairs; the bars' axes are straight lines from start to end (SPEC 10).
 
-Used in docs/case-study.md ("Why NL-A can carry more than EL") to compare the interfaces.
+Used in docs/case-study.md ("Session 8: what the plate's peak is made of, and where the beams
+break") to compare the interfaces.
 """
 import argparse
 import csv

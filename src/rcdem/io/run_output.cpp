@@ -12,13 +12,13 @@ namespace fs = std::filesystem;
 
 std::vector<Real> particle_damage(const Simulation& sim) {
   const ContactNetwork& net = sim.specimen().contacts;
-  const auto& pts = sim.contacts().point;
+  const std::vector<Real>& damage = sim.point_damage();  // current without a catch-up
   const auto n = static_cast<std::size_t>(sim.bodies().size());
   std::vector<Real> sum(n, 0.0), area(n, 0.0);
   for (Index c = 0; c < net.contact_count(); ++c) {
     Real d = 0.0, a = 0.0;
     for (Index m = net.point_begin[c]; m < net.point_begin[c + 1]; ++m) {
-      d += pts.damage[m] * net.point_area[m];
+      d += damage[static_cast<std::size_t>(m)] * net.point_area[m];
       a += net.point_area[m];
     }
     for (Index i : {net.particle_a[c], net.particle_b[c]}) {
