@@ -192,7 +192,7 @@ ContactInputs Simulation::concrete_inputs(const std::vector<Vec3>& positions,
 void Simulation::catch_up_condensed_points() const {
   // The last evaluation's kinematics: its centres and orientation matrices, both kept until the
   // next step forms them anew.
-  if (condensation_.any_condensed)
+  if (!condensation_.sums.empty() && evaluation_known_)
     catch_up_condensed(bilinear_, concrete_inputs(position_eval_, rotation_), contacts_,
                        condensation_);
 }
@@ -233,9 +233,11 @@ void Simulation::step() {
   const ContactInputs previous = concrete_inputs(position_prev_, rotation_prev_);
   if (law_kind_ == ConcreteLaw::BilinearSoftening)
     evaluate_contacts(bilinear_, concrete, contacts_,
-                      condensation_.sums.empty() ? nullptr : &condensation_, &previous);
+                      condensation_.sums.empty() ? nullptr : &condensation_,
+                      evaluation_known_ ? &previous : nullptr);
   else
     evaluate_contacts(elastic_, concrete, contacts_);
+  evaluation_known_ = true;
   // Steel-concrete interfaces, bar by bar with its law; interaction nodes.
   for (std::size_t k = 0; k < interface_states_.size(); ++k) {
     const InterfaceContacts& ic = specimen_.interfaces[k];
@@ -432,6 +434,11 @@ Real points_strain_energy(const ContactNetwork& net, const ContactState& cs) {
 
 Real Simulation::concrete_strain_energy() const {
   const ContactNetwork& net = specimen_.contacts;
+  // Damaged contacts evaluated from sums are read from their points, brought up to date (their
+  // energy needs the offsets of every point); that leaves them in their state.
+  if (!condensation_.sums.empty() && evaluation_known_)
+    catch_up_damaged(bilinear_, concrete_inputs(position_eval_, rotation_), contacts_,
+                     condensation_);
   if (!condensation_.any_condensed) return points_strain_energy(net, contacts_);
   // Condensed contacts from their sums at the last evaluation's kinematics (their histories are
   // stale), the others from their points.
