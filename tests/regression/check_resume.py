@@ -228,6 +228,7 @@ try:
               f"the checkpoint reads as documented (format 4, {len(h['data'])} bytes, "
               f"{len(h['sections'])} sections, CRC-32 checked by zlib)")
         need = {"bodies": 22, "bodies.step": 3, "contacts": 17, "contacts.points": 9,
+                "condensation.damaged": 26,
                 "interface.0": 17, "interface.0.points": 9, "nodes": 35, "plates": 8,
                 "plate_contacts": 21, "pulled_bars": 7, "solver": 11,
                 "history": len(open(os.path.join(ref, "history.csv")).readline().split(",")),

@@ -143,7 +143,7 @@ template <typename Law, bool kPointsOnly = false>
   if (intact && t.max_damage > 0) cond->intact[c] = 0;
   store_contact(cs, c, f, t);
   if constexpr (std::is_same_v<Law, BilinearSoftening>) {
-    if (cond && !cond->intact[c] && cond->eligible[c] && t.outside == 0)
+    if (cond && cond->damaged_enabled && !cond->intact[c] && cond->eligible[c] && t.outside == 0)
       enter_damaged_condensation(law, in, cs, *cond, c, f);
   }
 }

@@ -217,6 +217,13 @@ Index ElasticCondensation::damaged_condensed_count() const {
       std::count(damaged_active.begin(), damaged_active.end(), std::uint8_t{1}));
 }
 
+Index ElasticCondensation::damaged_condensed_point_count(const ContactNetwork& net) const {
+  Index n = 0;
+  for (Index c = 0; c < static_cast<Index>(damaged_active.size()); ++c)
+    if (damaged_active[static_cast<std::size_t>(c)]) n += net.points_of(c);
+  return n;
+}
+
 Index ElasticCondensation::condensed_point_count(const ContactNetwork& net) const {
   Index n = 0;
   for (Index c = 0; c < static_cast<Index>(condensed.size()); ++c)

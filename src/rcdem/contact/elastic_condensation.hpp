@@ -73,6 +73,7 @@ struct ElasticCondensation {
   bool any_condensed = false;           // some flag above is set
   // Damaged contacts evaluated from sums (damaged_condensation.hpp): their histories are brought
   // up to date on reading without leaving the state, so they stay in it until a bound fails.
+  bool damaged_enabled = true;  // solver.condense_damaged_contacts
   std::vector<std::uint8_t> damaged_active;
   std::vector<DamagedSums> damaged;     // per contact; meaningful where damaged_active
 
@@ -82,6 +83,7 @@ struct ElasticCondensation {
   void reset_flags(const ContactNetwork& net, const std::vector<Real>& damage);
   Index condensed_count() const;
   Index damaged_condensed_count() const;
+  Index damaged_condensed_point_count(const ContactNetwork& net) const;  // their local points
   Index condensed_point_count(const ContactNetwork& net) const;  // their local points
 };
 

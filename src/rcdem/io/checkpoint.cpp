@@ -549,6 +549,7 @@ struct CheckpointAccess {
         throw Reject{fmt::format("section 'condensation.damaged' names contact {}, which is not "
                                  "a damaged contact of this specimen",
                                  c)};
+      if (!cond.damaged_enabled) continue;  // restarted with solver.condense_damaged_contacts off
       cond.damaged_active[i] = 1;
       cond.damaged[i] = d;
     }

@@ -82,7 +82,10 @@ Simulation::Simulation(const Scenario& sc, Specimen specimen)
   }
   contacts_.init(specimen_.contacts, bodies_.position);
   if (sc.solver.condense_elastic_contacts && law_kind_ == ConcreteLaw::BilinearSoftening)
+  {
     condensation_ = ElasticCondensation::build(specimen_.contacts, bodies_.position0);
+    condensation_.damaged_enabled = sc.solver.condense_damaged_contacts;
+  }
   body_contacts_ = BodyContacts::build(specimen_.contacts, bodies_.size());
   plates_ = make_plates(sc.plates, specimen_.geometry);
   plate_contacts_ = make_plate_contacts(plates_, specimen_.boundary, bodies_, sc.contact);

@@ -72,9 +72,14 @@ class Simulation {
   // Concrete contacts evaluated from their sums at the last step (0 when condensation is off,
   // and after a read of the state above has brought their points up to date).
   Index condensed_contacts() const { return condensation_.condensed_count(); }
+  // Which contacts the last step evaluated from sums (for diagnostics: bench/envelope_census).
+  const ElasticCondensation& condensation() const { return condensation_; }
   // Damaged concrete contacts evaluated from sums inside their envelopes (damaged_condensation.hpp);
   // reading the state leaves them so.
   Index damaged_condensed_contacts() const { return condensation_.damaged_condensed_count(); }
+  Index damaged_condensed_points() const {
+    return condensation_.damaged_condensed_point_count(specimen_.contacts);
+  }
   Index condensed_points() const { return condensation_.condensed_point_count(specimen_.contacts); }
   // Brings condensed contacts' point histories up to the last step (contacts() does it).
   void catch_up_condensed_points() const;
