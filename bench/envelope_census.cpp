@@ -1,14 +1,16 @@
 // Diagnostic (not a benchmark): from a run's checkpoint, how many damaged concrete contacts have
-// every local point inside its BL envelope over a step (no cap, no damage growth: the offsets and
-// the damage unchanged), and how many stay inside over the whole run of steps.
+// every local point inside its BL envelope over a step (the law's result equals the elastic
+// update with slopes kn, ks: no cap, no damage growth), how many have every point fully damaged
+// and open, and how many stay inside over the whole run of steps. What such contacts could gain
+// from being evaluated from sums: docs/model.md §12, bench/RESULTS.md session 10.
 // Usage: rcdem_envelope_census SCENARIO.toml STEPS CHECKPOINT
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
-#include <cstdint>
-#include <cstring>
 #include <vector>
 
+#include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
 #include "rcdem/io/checkpoint.hpp"
 #include "rcdem/io/scenario.hpp"
@@ -16,72 +18,79 @@
 #include "rcdem/specimens/specimen.hpp"
 
 int main(int argc, char** argv) {
-  if (argc < 4) return 1;
-  rcdem::Progress::set_quiet_default(true);
-  const rcdem::Scenario sc = rcdem::load_scenario(argv[1]);
-  rcdem::Simulation sim(sc, rcdem::build_specimen(sc));
-  const auto header = rcdem::io::inspect_checkpoint(argv[3]);
-  rcdem::io::restore_checkpoint(argv[3], rcdem::io::CheckpointParts{&sim}, header.scenario_hash);
-  const long steps = std::stol(argv[2]);
-  const auto& net = sim.specimen().contacts;
-  const rcdem::Index nc = net.contact_count();
-  std::vector<int> inside_run(nc, 0), longest(nc, 0);
-  long sum_entries = 0, sum_exits = 0, sum_damaged = 0, sum_inside = 0, sum_open = 0, sum_from_sums = 0, sum_points_inside = 0, sum_dpoints = 0;
-  for (long k = 0; k < steps; ++k) {
-    const rcdem::LocalPointArrays before = sim.contacts().point;
-    const std::vector<std::uint8_t> active_before = sim.condensation().damaged_active;
-    const std::vector<rcdem::DamagedSums> entry_before = sim.condensation().damaged;
-    sim.step();
-    for (std::size_t c = 0; c < active_before.size(); ++c) {
-      const bool now = sim.condensation().damaged_active[c];
-      // Left and entered again within the step: new entry values.
-      const bool again = active_before[c] && now &&
-                         std::memcmp(&entry_before[c], &sim.condensation().damaged[c],
-                                     sizeof(rcdem::DamagedSums)) != 0;
-      sum_entries += (!active_before[c] && now) || again;
-      sum_exits += (active_before[c] && !now) || again;
-    }
-    const rcdem::LocalPointArrays& after = sim.contacts().point;
-    long damaged = 0, inside = 0, open = 0;
-    for (rcdem::Index c = 0; c < nc; ++c) {
-      bool any_d = false, all_in = true, all_open = true;
-      for (rcdem::Index m = net.point_begin[c]; m < net.point_begin[c + 1]; ++m) {
-        if (before.damage[m] > 0) any_d = true;
-        // Inside the envelope: the offsets and the damage unchanged (local_point_state.hpp).
-        const bool el = after.pn[m] == before.pn[m] && after.ps1[m] == before.ps1[m] &&
-                        after.ps2[m] == before.ps2[m] && after.damage[m] == before.damage[m];
-        if (before.damage[m] > 0) {
-          ++sum_dpoints;
-          if (el) ++sum_points_inside;
-        }
-        if (!el) all_in = false;
-        if (!(before.damage[m] == 1 && after.un[m] == after.pn[m])) all_open = false;
-      }
-      if (!any_d) continue;
-      ++damaged;
-      if (all_in) ++inside;
-      if (all_open) ++open;
-      inside_run[c] = all_in ? inside_run[c] + 1 : 0;
-      longest[c] = std::max(longest[c], inside_run[c]);
-    }
-    sum_damaged += damaged;
-    sum_inside += inside;
-    sum_open += open;
-    sum_from_sums += sim.damaged_condensed_contacts();
-    if (k % 20 == 0)
-      std::printf("step %ld damaged_contacts %ld all_points_inside %ld fully_open %ld "
-                  "damaged_from_sums %ld\n",
-                  k, damaged, inside, open, static_cast<long>(sim.damaged_condensed_contacts()));
+  if (argc != 4) {
+    std::fprintf(stderr, "usage: rcdem_envelope_census SCENARIO.toml STEPS CHECKPOINT\n");
+    return 1;
   }
-  long whole = 0;
-  for (rcdem::Index c = 0; c < nc; ++c)
-    if (longest[c] >= steps) ++whole;
-  const auto mean = [steps](long v) { return static_cast<double>(v) / static_cast<double>(steps); };
-  std::printf("per step: entries %.1f exits %.1f (a contact leaving and "
-              "entering again within a step counts in both)\n",
-              mean(sum_entries), mean(sum_exits));
-  std::printf("mean damaged %.0f inside %.0f open %.0f from_sums %.0f; damaged points inside "
-              "%.3f; contacts inside every step %ld\n",
-              mean(sum_damaged), mean(sum_inside), mean(sum_open), mean(sum_from_sums),
-              static_cast<double>(sum_points_inside) / static_cast<double>(sum_dpoints), whole);
+  long steps = 0;
+  try {
+    steps = std::stol(argv[2]);
+  } catch (const std::exception&) {
+  }
+  if (steps <= 0) {
+    std::fprintf(stderr, "rcdem_envelope_census: STEPS must be a whole number > 0\n");
+    return 1;
+  }
+  rcdem::Progress::set_quiet_default(true);
+  try {
+    const rcdem::Scenario sc = rcdem::load_scenario(argv[1]);
+    rcdem::Simulation sim(sc, rcdem::build_specimen(sc));
+    const auto header = rcdem::io::inspect_checkpoint(argv[3]);
+    rcdem::io::restore_checkpoint(argv[3], rcdem::io::CheckpointParts{&sim},
+                                  header.scenario_hash);
+    const auto& net = sim.specimen().contacts;
+    const rcdem::Index nc = net.contact_count();
+    std::vector<long> inside_run(static_cast<std::size_t>(nc), 0);
+    long sum_damaged = 0, sum_inside = 0, sum_open = 0, sum_points_inside = 0, sum_points = 0;
+    for (long k = 0; k < steps; ++k) {
+      const rcdem::LocalPointArrays before = sim.contacts().point;
+      sim.step();
+      const rcdem::LocalPointArrays& after = sim.contacts().point;
+      long damaged = 0, inside = 0, open = 0;
+      for (rcdem::Index c = 0; c < nc; ++c) {
+        bool any_damaged = false, all_inside = true, all_open = true;
+        for (rcdem::Index m = net.point_begin[c]; m < net.point_begin[c + 1]; ++m) {
+          const auto& kc = net.constants[m];
+          // The elastic update from the stored history (bilinear_softening.hpp), to rounding.
+          const double fn = before.fn[m] + kc.kn * (after.un[m] - before.un[m]);
+          const double f1 = before.fs1[m] - kc.ks * (after.us1[m] - before.us1[m]);
+          const double f2 = before.fs2[m] - kc.ks * (after.us2[m] - before.us2[m]);
+          const double tol = 1e-9 * kc.fn_max;
+          const bool in = std::abs(after.fn[m] - fn) <= tol && std::abs(after.fs1[m] - f1) <= tol &&
+                          std::abs(after.fs2[m] - f2) <= tol && after.damage[m] == before.damage[m];
+          if (before.damage[m] > 0) {
+            any_damaged = true;
+            ++sum_points;
+            sum_points_inside += in;
+          }
+          all_inside &= in;
+          all_open &= before.damage[m] == 1 && after.fn[m] == 0;
+        }
+        if (!any_damaged) continue;
+        ++damaged;
+        inside += all_inside;
+        open += all_open;
+        auto& run = inside_run[static_cast<std::size_t>(c)];
+        run = all_inside && run == k ? k + 1 : run;  // inside at every step so far
+      }
+      sum_damaged += damaged;
+      sum_inside += inside;
+      sum_open += open;
+      if (k % 20 == 0)
+        std::printf("step +%ld: damaged contacts %ld, every point inside %ld, every point open %ld\n",
+                    k, damaged, inside, open);
+    }
+    const long whole = std::count(inside_run.begin(), inside_run.end(), steps);
+    const auto mean = [steps](long v) { return static_cast<double>(v) / static_cast<double>(steps); };
+    std::printf(
+        "mean per step: damaged contacts %.0f, every point inside %.0f, every point open %.0f; "
+        "damaged points inside %.3f; contacts inside at every one of the %ld steps %ld\n",
+        mean(sum_damaged), mean(sum_inside), mean(sum_open),
+        static_cast<double>(sum_points_inside) / static_cast<double>(std::max(1L, sum_points)),
+        steps, whole);
+  } catch (const rcdem::Error& e) {
+    std::fprintf(stderr, "rcdem_envelope_census: %s\n", e.what());
+    return 1;
+  }
+  return 0;
 }

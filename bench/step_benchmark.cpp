@@ -57,7 +57,7 @@ using rcdem::Vec3;
 // Per local point (concrete network), contact loop (contact_loop.hpp):
 //   point_position0  Vec3                  read             24
 //   constants        LocalPointConstants   read             32
-//   point (state)    LocalPointArrays: 9 Real (pn, ps1, ps2, un, us1, us2, un_max, us_max_sq,
+//   point (state)    LocalPointArrays: 9 Real (fn, fs1, fs2, un, us1, us2, un_max, us_max_sq,
 //                    damage)               read + write     2 x 72
 //                                                           = 200
 // Per contact (concrete network):
@@ -104,16 +104,14 @@ using rcdem::Vec3;
 //   A's and B's position + orientation r 112; gather: NodeRef r, NodeForces r, A's and B's
 //   force + torque r+w 192; energy: InteractionNode r, NodeState r, NodeForces.dissipated r 8.
 struct ByteCount {
-  double per_local_point = 0, per_contact = 0, per_condensed_contact = 0,
-         per_damaged_contact = 0, per_body = 0, per_plate_contact = 0, per_interface_contact = 0,
-         per_node = 0;
-  double local_points = 0, contacts = 0, condensed_contacts = 0, damaged_contacts = 0,
-         visited_points = 0, bodies = 0, plate_contacts = 0, interface_contacts = 0,
-         interface_points = 0, nodes = 0;
+  double per_local_point = 0, per_contact = 0, per_condensed_contact = 0, per_body = 0,
+         per_plate_contact = 0, per_interface_contact = 0, per_node = 0;
+  double local_points = 0, contacts = 0, condensed_contacts = 0, visited_points = 0, bodies = 0,
+         plate_contacts = 0, interface_contacts = 0, interface_points = 0, nodes = 0;
   double points_total() const { return per_local_point * visited_points; }
   double contacts_total() const {
-    return per_contact * (contacts - condensed_contacts - damaged_contacts) +
-           per_condensed_contact * condensed_contacts + per_damaged_contact * damaged_contacts;
+    return per_contact * (contacts - condensed_contacts) +
+           per_condensed_contact * condensed_contacts;
   }
   double bodies_total() const { return per_body * bodies; }
   double plates_total() const { return per_plate_contact * plate_contacts; }
@@ -141,10 +139,6 @@ ByteCount count_bytes(const rcdem::Simulation& sim) {
   // its points, and leaves its frame (normal, tangent: read + written) alone.
   b.per_condensed_contact =
       b.per_contact - 2 * 2 * V + rcdem::CondensedSums::kBytesPerContact + 2 * sizeof(std::uint8_t);
-  // A damaged contact evaluated from sums (contact/damaged_condensation.hpp) reads its sums, its
-  // entry values and three flags, and its frame as a visited contact does, instead of its points.
-  b.per_damaged_contact = b.per_contact + rcdem::CondensedSums::kBytesPerContact +
-                          sizeof(rcdem::DamagedSums) + 3 * sizeof(std::uint8_t);
   constexpr double J = sizeof(std::int64_t), P = rcdem::BodyPoses::kStride * R;
   const bool point_path = sim.condensed_contacts() < sim.specimen().contacts.contact_count();
   b.per_body = (V + Q + 9 * R + V + P)                                // kinematics
@@ -173,9 +167,7 @@ ByteCount count_bytes(const rcdem::Simulation& sim) {
   b.contacts = static_cast<double>(sp.contacts.contact_count());
   // As the last step left them (the count changes slowly over a run).
   b.condensed_contacts = static_cast<double>(sim.condensed_contacts());
-  b.damaged_contacts = static_cast<double>(sim.damaged_condensed_contacts());
-  b.visited_points = b.local_points - static_cast<double>(sim.condensed_points()) -
-                     static_cast<double>(sim.damaged_condensed_points());
+  b.visited_points = b.local_points - static_cast<double>(sim.condensed_points());
   b.bodies = static_cast<double>(sim.bodies().size());
   b.plate_contacts = static_cast<double>(sim.plate_contacts().size());
   for (const auto& ic : sp.interfaces) {
@@ -272,19 +264,19 @@ int main(int argc, char** argv) {
         "scenario=%s threads=%d bodies=%.0f contacts=%.0f local_points=%.0f steps=%ld "
         "seconds=%.4f steps_per_s=%.3f particle_steps_per_s=%.4g contact_steps_per_s=%.4g "
         "local_point_steps_per_s=%.4g bytes_per_step=%.0f bytes_per_local_point=%.1f "
-        "achieved_GBps=%.3f setup_seconds=%.2f condensed_contacts=%.0f "
-        "damaged_condensed_contacts=%.0f cpu_seconds=%.4f repeat_seconds=%s\n",
+        "achieved_GBps=%.3f setup_seconds=%.2f condensed_contacts=%.0f cpu_seconds=%.4f "
+        "repeat_seconds=%s\n",
         path.c_str(), threads, bodies, contacts, points, steps, seconds, rate, rate * bodies,
         rate * contacts, rate * points, bytes, bytes / points, bytes * rate * 1e-9, setup_s,
-        bc.condensed_contacts, bc.damaged_contacts, cpu_seconds, repeat_seconds.c_str());
+        bc.condensed_contacts, cpu_seconds, repeat_seconds.c_str());
     std::printf(
         "# bytes: per_local_point=%.0f x %.0f visited = %.4g; per_contact=%.0f x %.0f + "
-        "condensed %.0f x %.0f + damaged from sums %.0f x %.0f = %.4g; "
+        "condensed %.0f x %.0f = %.4g; "
         "per_body=%.0f x %.0f = %.4g; plates=%.0f x %.0f = %.4g; interfaces=%.0f x %.0f "
         "+ %.0f x %.0f points = %.4g; nodes=%.0f x %.0f = %.4g; total=%.4g\n",
         bc.per_local_point, bc.visited_points, bc.points_total(), bc.per_contact,
-        bc.contacts - bc.condensed_contacts - bc.damaged_contacts, bc.per_condensed_contact,
-        bc.condensed_contacts, bc.per_damaged_contact, bc.damaged_contacts, bc.contacts_total(), bc.per_body, bc.bodies, bc.bodies_total(), bc.per_plate_contact,
+        bc.contacts - bc.condensed_contacts, bc.per_condensed_contact, bc.condensed_contacts,
+        bc.contacts_total(), bc.per_body, bc.bodies, bc.bodies_total(), bc.per_plate_contact,
         bc.plate_contacts, bc.plates_total(), bc.per_interface_contact, bc.interface_contacts,
         bc.per_local_point, bc.interface_points, bc.interfaces_total(), bc.per_node, bc.nodes,
         bc.nodes_total(), bc.total());

@@ -209,125 +209,11 @@ TEST(ElasticCondensation, ContactsNearTheirLimitsGoThroughTheirPoints) {
 
 namespace {
 
-// Bodies b1's displacements and rotations scaled by s (s < 1: the contacts unload towards t = 0).
-Bodies scaled(const Bodies& b1, Real s) {
-  Bodies b = b1;
-  for (Index i = 0; i < b.size(); ++i) {
-    b.position[i] = b.position0[i] + s * (b1.position[i] - b1.position0[i]);
-    b.orientation[i] = Quat::Identity().slerp(s, b1.orientation[i]);
-  }
-  return b;
-}
-
-// A sequence of evaluations with the state kept between them, as Simulation::step keeps it.
-struct Sequence {
-  const Specimen& sp;
-  const BilinearSoftening& law;
-  bool condense;
-  ContactState cs;
-  ElasticCondensation cond;
-  std::vector<Bodies> bodies;  // every evaluation's kinematics, kept alive for `previous`
-  std::vector<std::vector<Eigen::Matrix3d>> rot;
-  std::vector<BodyPoses> pose;
-
-  Sequence(const Specimen& s, const BilinearSoftening& l, bool c) : sp(s), law(l), condense(c) {
-    bodies.reserve(16);
-    rot.reserve(16);
-    pose.reserve(16);
-  }
-  ContactInputs inputs(std::size_t k) const {
-    return {sp.contacts,        bodies[k].position.data(),
-            bodies[k].position0.data(), bodies[k].angular_velocity.data(),
-            bodies[k].orientation0.data(), rot[k].data(), nullptr, 1e-7, pose[k].ptr()};
-  }
-  void evaluate(const Bodies& b) {
-    if (bodies.empty()) {
-      cs.init(sp.contacts, b.position0);
-      if (condense) cond = ElasticCondensation::build(sp.contacts, b.position0);
-    }
-    bodies.push_back(b);
-    rot.emplace_back();
-    for (const Quat& q : b.orientation) rot.back().push_back(q.toRotationMatrix());
-    pose.push_back(BodyPoses::of(b.position, b.orientation));
-    const std::size_t k = bodies.size() - 1;
-    const ContactInputs in = inputs(k);
-    if (condense) {
-      const ContactInputs prev = inputs(k == 0 ? 0 : k - 1);
-      evaluate_contacts(law, in, cs, &cond, &prev);
-    } else {
-      evaluate_contacts(law, in, cs);
-    }
-  }
-  void catch_up() { catch_up_condensed(law, inputs(bodies.size() - 1), cs, cond); }
-};
-
-}  // namespace
-
-// Damaged contacts inside their envelopes (damaged_condensation.hpp), the algebra: the cube is
-// loaded past some limits, then unloaded in steps. Contacts whose points all unloaded are
-// evaluated from their offsets' sums from the next step; their force and torques equal the point
-// loop's to the rounding of u0, and once caught up every point's history equals the point
-// loop's (offsets and damage exactly: no point left its envelope while condensed).
-TEST(ElasticCondensation, DamagedContactInsideItsEnvelopeGivesItsPointsForceAndTorques) {
-  const Scenario sc = bl_cube(0.0, true);
-  const Specimen sp = build_specimen(sc);
-  const BilinearSoftening law = law_of(sc);
-  const Index nc = sp.contacts.contact_count();
-  const Bodies b1 = displaced(sp, 1e-8, 2e-4, 7);
-  Sequence full(sp, law, false), fast(sp, law, true);
-  Index most = 0, after_unloading = 0;
-  // Loaded, unloaded in steps, reloaded past the first load (the bound sends contacts back to
-  // their points, which damage further), unloaded again.
-  for (const Real s : {0.5, 1.0, 0.95, 0.9, 0.85, 0.8, 0.7, 0.9, 1.05, 1.1, 1.0, 0.95}) {
-    const Bodies b = scaled(b1, s);
-    full.evaluate(b);
-    fast.evaluate(b);
-    const Index active = fast.cond.damaged_condensed_count();
-    if (s == 0.7) after_unloading = active;
-    if (s == 1.1) {
-      EXPECT_LT(active, after_unloading) << "reloading sends contacts back to their points";
-    }
-    most = std::max(most, active);
-    EXPECT_EQ(worse_than_rounding(sp, b, full.cs, fast.cs), 0) << "scale " << s;
-  }
-  Index damaged_contacts = 0;
-  for (Index c = 0; c < nc; ++c) damaged_contacts += !fast.cond.intact[c];
-  EXPECT_GT(damaged_contacts, 20) << "the loading damaged contacts";
-  EXPECT_GT(most, damaged_contacts / 4) << "unloading sends many of them to their sums";
-  const Index before_reading = fast.cond.damaged_condensed_count();
-  EXPECT_GT(before_reading, 0);
-  fast.catch_up();
-  EXPECT_EQ(fast.cond.damaged_condensed_count(), before_reading) << "reading leaves them there";
-  // Shear vectors compared in the world: the two paths may carry different (equally valid) frames
-  // for contacts that were intact in one and not the other.
-  const LocalPointArrays &x = full.cs.point, &y = fast.cs.point;
-  Real worst_u = 0, scale = 0;
-  for (Index c = 0; c < nc; ++c)
-    for (Index m = sp.contacts.point_begin[c]; m < sp.contacts.point_begin[c + 1]; ++m) {
-      ASSERT_EQ(x.damage[m], y.damage[m]) << "point " << m;
-      const Vec3 us_x = full.cs.shear_displacement(c, m), us_y = fast.cs.shear_displacement(c, m);
-      const Vec3 ps_x = full.cs.to_world(c, Vec3(x.ps1[m], x.ps2[m], 0));
-      const Vec3 ps_y = fast.cs.to_world(c, Vec3(y.ps1[m], y.ps2[m], 0));
-      scale = std::max({scale, std::abs(x.un[m]), us_x.norm()});
-      worst_u = std::max({worst_u, std::abs(x.un[m] - y.un[m]), std::abs(x.pn[m] - y.pn[m]),
-                          (us_x - us_y).norm(), (ps_x - ps_y).norm()});
-    }
-  EXPECT_LT(worst_u, 1e-12 * scale);
-  std::printf(
-      "[damaged] %lld damaged contacts, at most %lld from sums (%lld after unloading, %lld at the "
-      "end); histories within %.3g m\n",
-      (long long)damaged_contacts, (long long)most, (long long)after_unloading,
-      (long long)before_reading, worst_u);
-}
-
-namespace {
-
 // A run's loads, step by step, and what it ended with.
 struct Trace {
   std::vector<Real> load;
   std::int64_t first_damage_step = -1;  // the first step with dissipation by damage
   Index condensed_max = 0, condensed_end = 0, broken = 0, damaged = 0;
-  std::int64_t damaged_condensed_steps = 0;  // damaged contacts evaluated from sums, summed
   Real damage = 0, friction = 0, strain = 0;
 };
 
@@ -340,7 +226,6 @@ Trace run(const Scenario& sc, int steps, int read_every = 0) {
     t.load.push_back(-sim.plates()[1].force.z());
     if (t.first_damage_step < 0 && sim.ledger().damage > 0) t.first_damage_step = s;
     t.condensed_max = std::max(t.condensed_max, sim.condensed_contacts());
-    t.damaged_condensed_steps += sim.damaged_condensed_contacts();
     if (read_every > 0 && s % read_every == 0) {
       (void)sim.contacts();
       (void)sim.strain_energy();
@@ -442,16 +327,15 @@ void expect_run_matches_point_loop(Real velocity, int steps, const char* name) {
   EXPECT_LE(std::abs(on.damage - off.damage), 2 * spread_damage + 1e-9 * off.damage) << name;
   EXPECT_EQ(on.condensed_max, nc) << name << ": every contact is condensed at first";
   EXPECT_LT(on.condensed_end, nc) << name << ": damage sends contacts back to their points";
-  EXPECT_GT(on.damaged_condensed_steps, 0)
-      << name << ": damaged contacts unloading inside their envelopes are condensed";
   std::printf(
       "[%s] %lld contacts, %lld condensed at the end; peak %.5g N; worst load difference "
       "on/off %.3g N before the first damage (step %lld), %.3g N over the run; point loop nudged "
       "by 1e-12: %.3g / %.3g N; damage energy on %.6g / off %.6g J (nudged: within %.3g J); "
-      "broken points %lld / %lld; damaged contacts from sums %lld contact-steps\n",
+      "broken points "
+      "%lld / %lld\n",
       name, (long long)nc, (long long)on.condensed_end, p, before, (long long)first, after,
       spread_before, spread, on.damage, off.damage, spread_damage, (long long)on.broken,
-      (long long)off.broken, (long long)on.damaged_condensed_steps);
+      (long long)off.broken);
 }
 }  // namespace
 

@@ -114,7 +114,7 @@ SlideResult slide(Pair& p, ContactState& cs, bool corrected, Real distance, int 
     p.bodies.position[0] += (distance / steps) * axis;
     evaluate_contacts(law, p.net, p.bodies, cs, dt, corrected ? p.anchor0.data() : nullptr);
     Real fn = 0;
-    for (Index m = p.net.point_begin[0]; m < p.net.point_begin[1]; ++m) fn += cs.point.state(m, p.net.constants[m]).fn;
+    for (Index m = p.net.point_begin[0]; m < p.net.point_begin[1]; ++m) fn += cs.point[m].fn;
     out.max_normal = std::max(out.max_normal, std::abs(fn));
     out.normal = fn;
   }

@@ -209,7 +209,7 @@ TEST(SolverPair, PureOpeningFollowsBilinearTriangleAndDissipatesGfnA) {
     // Uniform opening: no moment about the facet centroid (S1's zero first moment).
     const Vec3 m_c = p.cs.torque_b[0] + (p.bodies.position[1] - p.facet.centroid).cross(fb);
     worst_moment = std::max(worst_moment, m_c.norm() / (fmax * 3e-3));
-    for (Index m = 0; m < 5; ++m) EXPECT_NEAR(p.cs.point.state(m, p.net().constants[m]).un, u, 1e-12 * u_nu);
+    for (Index m = 0; m < 5; ++m) EXPECT_NEAR(p.cs.point[m].un, u, 1e-12 * u_nu);
     if (u <= u_n0) {  // relative to the peak: u of the first steps is at rounding level of x
       worst_elastic = std::max(worst_elastic, std::abs(F - kn * u) / fmax);
     } else {
@@ -232,7 +232,7 @@ TEST(SolverPair, PureOpeningFollowsBilinearTriangleAndDissipatesGfnA) {
   const Real GA = p.params.G_fn * A;
   EXPECT_NEAR(dissipated / GA, 1.0, 0.01);
   EXPECT_NEAR(work / GA, 1.0, 0.01);  // independent: trapezoidal work of the contact force
-  for (Index m = 0; m < 5; ++m) EXPECT_EQ(p.cs.point.state(m, p.net().constants[m]).damage, 1.0);
+  for (Index m = 0; m < 5; ++m) EXPECT_EQ(p.cs.point[m].damage, 1.0);
   EXPECT_EQ(p.cs.strain_energy(p.net(), 0), 0.0);
   RecordProperty("dissipated_over_GfnA", std::to_string(dissipated / GA));
   std::printf(
@@ -272,8 +272,8 @@ TEST(SolverPair, PureShearFollowsBilinearTriangleAndDissipatesGfsA) {
     worst_normal = std::max(worst_normal, std::abs(fb.dot(n)) / cmax);
     worst_direction = std::max(worst_direction, (fb + F * u / s).norm() / cmax);
     for (Index m = 0; m < 5; ++m) {
-      EXPECT_LT(std::abs(p.cs.point.state(m, p.net().constants[m]).un), 1e-12 * u_s0);
-      EXPECT_NEAR(p.cs.point.state(m, p.net().constants[m]).us.norm(), s, 1e-12 * u_su);
+      EXPECT_LT(std::abs(p.cs.point[m].un), 1e-12 * u_s0);
+      EXPECT_NEAR(p.cs.point[m].us.norm(), s, 1e-12 * u_su);
     }
     if (s <= u_s0) {
       worst_elastic = std::max(worst_elastic, std::abs(F - ks * s) / cmax);
@@ -302,7 +302,7 @@ TEST(SolverPair, PureShearFollowsBilinearTriangleAndDissipatesGfsA) {
   const Real GA = p.params.G_fs * A;
   EXPECT_NEAR(dissipated / GA, 1.0, 0.01);
   EXPECT_NEAR(work / GA, 1.0, 0.01);
-  for (Index m = 0; m < 5; ++m) EXPECT_EQ(p.cs.point.state(m, p.net().constants[m]).damage, 1.0);
+  for (Index m = 0; m < 5; ++m) EXPECT_EQ(p.cs.point[m].damage, 1.0);
   std::printf(
       "[pair shear] peak/(tau A) - 1 = %.2e, dissipated/(G_fs A) - 1 = %.2e, work/(G_fs A) - 1 = "
       "%.2e\n",
@@ -345,8 +345,8 @@ TEST(SolverPair, BendingMomentIsSumOfKnYSquaredTheta) {
       EXPECT_LT(bal.norm(), 1e-12 * std::abs(expected));
       for (Index m = 0; m < 5; ++m) {
         const Real y = (p.net().point_position0[m] - p.facet.centroid).dot(e);
-        EXPECT_NEAR(p.cs.point.state(m, p.net().constants[m]).un, 2 * std::sin(0.5 * theta) * y, 1e-9 * theta * 3e-3);
-        EXPECT_EQ(p.cs.point.state(m, p.net().constants[m]).damage, 0.0);
+        EXPECT_NEAR(p.cs.point[m].un, 2 * std::sin(0.5 * theta) * y, 1e-9 * theta * 3e-3);
+        EXPECT_EQ(p.cs.point[m].damage, 0.0);
       }
     }
     std::printf(
@@ -372,7 +372,7 @@ TEST(SolverPair, TwistingMomentIsSumOfKsRSquaredPhi) {
   std::printf("[pair twist] |M / (sum ks r^2 phi) - 1| = %.2e\n",
               std::abs(m_c.dot(p.n0) / (-krr * phi) - 1));
   EXPECT_LT(p.cs.force_b[0].norm(), 1e-3 * p.sum_ks() * phi * 3e-3);
-  for (Index m = 0; m < 5; ++m) EXPECT_EQ(p.cs.point.state(m, p.net().constants[m]).damage, 0.0);
+  for (Index m = 0; m < 5; ++m) EXPECT_EQ(p.cs.point[m].damage, 0.0);
 }
 
 namespace {
@@ -391,7 +391,7 @@ void preload(Pair& p, int steps, Real dt) {
     p.evaluate(dt);
   }
   p.bodies.angular_velocity[1].setZero();
-  for (Index m = 0; m < 5; ++m) ASSERT_EQ(p.cs.point.state(m, p.net().constants[m]).damage, 0.0);
+  for (Index m = 0; m < 5; ++m) ASSERT_EQ(p.cs.point[m].damage, 0.0);
 }
 
 struct Snapshot {
@@ -403,8 +403,8 @@ struct Snapshot {
 Snapshot snapshot(const Pair& p) {
   Snapshot s{p.cs.force_b[0], p.cs.torque_a[0], p.cs.torque_b[0], {}, {}};
   for (Index m = 0; m < 5; ++m) {
-    s.fn.push_back(p.cs.point.state(m, p.net().constants[m]).fn);
-    s.fs.push_back(p.cs.shear_force(p.net(), 0, m));  // world frame
+    s.fn.push_back(p.cs.point[m].fn);
+    s.fs.push_back(p.cs.shear_force(0, m));  // world frame
   }
   return s;
 }
@@ -473,15 +473,15 @@ TEST(SolverPair, FiniteRigidRotationOfPreloadedPairRotatesForces) {
                     (p.cs.torque_a[0] - R * s0.torque_a).norm() / s0.torque_a.norm()});
       for (Index m = 0; m < 5; ++m) {
         const Real scale = std::abs(s0.fn[m]) + s0.fs[m].norm();
-        worst_point = std::max({worst_point, std::abs(p.cs.point.state(m, p.net().constants[m]).fn - s0.fn[m]) / scale,
-                                (p.cs.shear_force(p.net(), 0, m) - R * s0.fs[m]).norm() / scale});
+        worst_point = std::max({worst_point, std::abs(p.cs.point[m].fn - s0.fn[m]) / scale,
+                                (p.cs.shear_force(0, m) - R * s0.fs[m]).norm() / scale});
       }
     }
     EXPECT_LT(worst_force, 1e-9);
     EXPECT_LT(worst_torque, 1e-9);
     EXPECT_LT(worst_point, 1e-9);
     EXPECT_NEAR(p.cs.force_b[0].norm() / s0.force_b.norm(), 1.0, 1e-9);
-    for (Index m = 0; m < 5; ++m) EXPECT_EQ(p.cs.point.state(m, p.net().constants[m]).damage, 0.0);
+    for (Index m = 0; m < 5; ++m) EXPECT_EQ(p.cs.point[m].damage, 0.0);
     std::printf(
         "[pair rotation, spin %d] worst relative error: force %.3g, torque %.3g, point %.3g\n",
         int(with_spin), worst_force, worst_torque, worst_point);
@@ -521,7 +521,7 @@ SofteningRotation rotate_softening_pair(int steps) {
   }
   std::vector<Real> d0;
   for (Index m = 0; m < 5; ++m) {
-    const LocalPointState& s = p.cs.point.state(m, p.net().constants[m]);
+    const LocalPointState& s = p.cs.point[m];
     EXPECT_GT(s.damage, 0.05);
     EXPECT_LT(s.damage, 0.5);
     EXPECT_LT(s.fn, 0.0);  // compressed
@@ -549,12 +549,12 @@ SofteningRotation rotate_softening_pair(int steps) {
         std::max(r.worst_force, (p.cs.force_b[0] - R * s0.force_b).norm() / s0.force_b.norm());
     for (Index m = 0; m < 5; ++m) {
       const Real scale = std::abs(s0.fn[m]) + s0.fs[m].norm();
-      r.worst_point = std::max({r.worst_point, std::abs(p.cs.point.state(m, p.net().constants[m]).fn - s0.fn[m]) / scale,
-                                (p.cs.shear_force(p.net(), 0, m) - R * s0.fs[m]).norm() / scale});
+      r.worst_point = std::max({r.worst_point, std::abs(p.cs.point[m].fn - s0.fn[m]) / scale,
+                                (p.cs.shear_force(0, m) - R * s0.fs[m]).norm() / scale});
     }
   }
   for (Index m = 0; m < 5; ++m)
-    r.worst_damage_change = std::max(r.worst_damage_change, p.cs.point.state(m, p.net().constants[m]).damage - d0[m]);
+    r.worst_damage_change = std::max(r.worst_damage_change, p.cs.point[m].damage - d0[m]);
   return r;
 }
 

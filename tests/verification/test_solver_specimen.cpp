@@ -212,14 +212,14 @@ TEST(SolverSpecimen, HomogeneousStrainGivesUniformContactStrains) {
       const Real scale = eps_norm * d0;
       Vec3 f = Vec3::Zero();
       for (Index m = net.point_begin[c]; m < net.point_begin[c + 1]; ++m) {
-        const LocalPointState& s = cs.point.state(m, net.constants[m]);
+        const LocalPointState& s = cs.point[m];
         worst_exact = std::max(
             {worst_exact, std::abs(s.un - un) / scale, std::abs(s.us.norm() - us) / scale});
         worst_linear = std::max({worst_linear, std::abs(s.un - un_lin) / scale,
                                  std::abs(s.us.norm() - us_lin) / scale});
         const LocalPointConstants& k = net.constants[m];
         EXPECT_EQ(s.fn, k.kn * s.un);
-        f += -s.fn * cs.normal[c] + cs.shear_force(net, c, m);
+        f += -s.fn * cs.normal[c] + cs.shear_force(c, m);
       }
       worst_force = std::max(worst_force, (cs.force_b[c] - f).norm() / (f.norm() + 1e-300));
     }

@@ -7,14 +7,9 @@
 #include <cmath>
 #include <vector>
 
-#include <type_traits>
-
-#include "rcdem/contact/contact_frame.hpp"
 #include "rcdem/contact/contact_kinematics.hpp"
 #include "rcdem/contact/contact_state.hpp"
-#include "rcdem/contact/damaged_condensation.hpp"
 #include "rcdem/contact/elastic_condensation.hpp"
-#include "rcdem/contact/laws/bilinear_softening.hpp"
 #include "rcdem/core/parallel.hpp"
 #include "rcdem/state/bodies.hpp"
 #include "rcdem/state/contact_network.hpp"
@@ -27,7 +22,6 @@ struct PointSums {
   Real m_n = 0, m_1 = 0, m_2 = 0;  // its moment about A's centre
   Real damage = 0, friction = 0;   // dissipated this step
   Real point_damage = 0;           // the point's D after the step
-  Real outside = 0;                // 1 if the point left its envelope (capped or damaged)
 };
 
 // One local point of a contact, in the contact's frame (see evaluate_contacts): advances its
@@ -64,7 +58,6 @@ struct PointUpdate {
     out.f_2 = s.fs.y;
     out.damage = res.dissipated - res.dissipated_friction;
     out.friction = res.dissipated_friction;
-    out.outside = res.left_envelope ? 1.0 : 0.0;
     // The lever arm: E^T u0 / 2 + arm r.
     const Real a_n = 0.5 * disp0.x() + arm(0, 0) * rx + arm(0, 1) * ry + arm(0, 2) * rz;
     const Real a_1 = 0.5 * disp0.y() + arm(1, 0) * rx + arm(1, 1) * ry + arm(1, 2) * rz;
@@ -76,26 +69,100 @@ struct PointUpdate {
   }
 };
 
-// Contact c's points advanced by the law in frame f (phi: the force on B, mom: its moment about
-// A's centre, both in the frame).
-template <typename Law>
-[[gnu::always_inline]] inline PointTotals advance_points(const Law& law, const ContactInputs& in,
-                                                         ContactState& cs, Index c,
-                                                         const ContactFrame& f) {
+// What the evaluation of a network's contacts reads in one step.
+struct ContactInputs {
+  const ContactNetwork& net;
+  const Vec3* x;                    // body centres at the evaluation
+  const Vec3* x0;                   // at t = 0
+  const Vec3* w;                    // angular velocities
+  const Quat* q0;                   // orientations at t = 0
+  const Eigen::Matrix3d* rotation;  // orientations as matrices
+  const Vec3* anchor0;              // interface contacts only (below), else null
+  Real dt;
+  const Real* pose = nullptr;  // BodyPoses of x and the orientations: needed with condensation
+};
+
+// With `anchor0` (steel-concrete interface contacts, SPEC 8), B is a cylinder and the normal is the
+// component of (x_A - anchor) perpendicular to the cylinder's current axis, pointing from A to the
+// axis, anchor being the interface sphere's centre carried by the cylinder: the sphere
+// discretisation then adds no artificial interlock along the bar.
+[[gnu::always_inline]] inline Vec3 contact_normal(const ContactInputs& in, Index a, Index b,
+                                                  Index c) {
+  if (in.anchor0) {
+    const Eigen::Matrix3d& rb = in.rotation[b];
+    const Vec3 axis = rb * (in.q0[b] * Vec3::UnitZ());
+    const Vec3 anchor = in.x[b] + rb * (in.anchor0[c] - in.x0[b]);
+    const Vec3 d = anchor - in.x[a];
+    return (d - d.dot(axis) * axis).normalized();
+  }
+  // Eigen's normalized() of this expression was not inlined: a call per contact, 15% of the step.
+  const Vec3 d = in.x[b] - in.x[a];
+  return d / std::sqrt(d.squaredNorm());  // the same rounding as normalized()
+}
+
+// One contact through its points (kPointsOnly: only the points' histories and the frame, for
+// ElasticCondensation's catch-up; nothing the gather reads).
+//
+// Everything per point is done in the contact's frame E = [n t1 t2] (right-handed: t2 = n x t1),
+// with matrices formed once per contact, so that a point costs two 3x3 products, the law and a
+// cross product, all on plain scalars (in SIMD lanes for the EL law, see PointUpdate):
+//   relative displacement (SPEC 4, contact_kinematics.hpp): u_J = u0 + (R_B - R_A) r,
+//     r = p_J0 - x_A0, so in the frame E^T u_J = E^T u0 + (E^T (R_B - R_A)) r;
+//   force on B in the frame: phi = (-fn, fs1, fs2), the contact's force E sum(phi);
+//   the point's position relative to A's centre, x_A + R_A r + u_J / 2 - x_A, in the frame
+//     rho = E^T u0 / 2 + (E^T (R_A + (R_B - R_A) / 2)) r, and the moment about A
+//     sum (E rho) x (E phi) = E sum(rho x phi) (E is a rotation).
+// The frame turns with the contact (SPEC 4), carrying the points' shear histories, except while
+// every point of the contact is intact: their forces are then independent of the frame
+// (kn u_n, -ks u_s), so it is any axis across n, as ElasticCondensation's catch-up draws it.
+template <typename Law, bool kPointsOnly = false>
+[[gnu::always_inline]] inline void evaluate_contact(const Law& law, const ContactInputs& in,
+                                                    ContactState& cs, ElasticCondensation* cond,
+                                                    Index c) {
   const ContactNetwork& net = in.net;
+  const Index a = net.particle_a[c];
+  const Index b = net.particle_b[c];
+  const Vec3 n = contact_normal(in, a, b, c);
+  const bool intact = cond && cond->intact[c];
+  Vec3 t1;
+  if (intact) {
+    t1 = any_perpendicular(n);
+  } else {
+    // SPEC 4: the plane's frame turns with the contact, carrying every point's shear history.
+    const PlaneRotation rot{cs.normal[c], n, 0.5 * in.dt * (in.w[a] + in.w[b]).dot(n)};
+    t1 = rot.turn_frame_axis(cs.tangent[c]);
+    if (!(t1.squaredNorm() > 0.5)) t1 = any_perpendicular(n);  // only after a turn near 90 deg
+  }
+  cs.normal[c] = n;
+  cs.tangent[c] = t1;
+  const Vec3 t2 = n.cross(t1);
+  Eigen::Matrix3d frame_t;  // E^T: rows n, t1, t2
+  frame_t.row(0) = n.transpose();
+  frame_t.row(1) = t1.transpose();
+  frame_t.row(2) = t2.transpose();
+  const Eigen::Matrix3d& ra = in.rotation[a];
+  const Eigen::Matrix3d& rb = in.rotation[b];
+  const Vec3 dx = in.x[b] - in.x[a];
+  const Vec3 r0 = in.x0[b] - in.x0[a];
+  Vec3 u0;
+  for (int i = 0; i < 3; ++i)
+    u0[i] = offset_displacement(dx[i], rb(i, 0), rb(i, 1), rb(i, 2), r0.x(), r0.y(), r0.z());
+  const Eigen::Matrix3d disp = frame_t * (rb - ra);
+  const Vec3 disp0 = frame_t * u0;
+  const Eigen::Matrix3d arm = frame_t * (0.5 * (ra + rb));
   Real phi_n = 0.0, phi_1 = 0.0, phi_2 = 0.0, mom_n = 0.0, mom_1 = 0.0, mom_2 = 0.0;
-  Real damage = 0.0, friction = 0.0, max_damage = 0.0, outside = 0.0;
+  Real damage = 0.0, friction = 0.0, max_damage = 0.0;
   const PointUpdate<Law> point{law,
                                net.point_position0.data(),
                                net.constants.data(),
                                cs.point.pointers(),
-                               in.x0[net.particle_a[c]],
-                               f.disp0,
-                               f.disp,
-                               f.arm};
+                               in.x0[a],
+                               disp0,
+                               disp,
+                               arm};
   const Index begin = net.point_begin[c], end = net.point_begin[c + 1];
-#pragma omp simd reduction(+ : phi_n, phi_1, phi_2, mom_n, mom_1, mom_2, damage, friction, \
-                               outside) reduction(max : max_damage)
+#pragma omp simd reduction(+ : phi_n, phi_1, phi_2, mom_n, mom_1, mom_2, damage, friction) \
+    reduction(max : max_damage)
   for (Index m = begin; m < end; ++m) {
     const PointSums o = point(m);
     phi_n += o.f_n;
@@ -106,55 +173,17 @@ template <typename Law>
     mom_2 += o.m_2;
     damage += o.damage;
     friction += o.friction;
-    outside += o.outside;
     max_damage = std::max(max_damage, o.point_damage);
   }
-  return {phi_n, phi_1, phi_2, mom_n, mom_1, mom_2, damage, friction, max_damage, outside};
-}
-
-// One contact through its points (kPointsOnly: only the points' histories and the frame, for
-// ElasticCondensation's catch-up; nothing the gather reads).
-//
-// Everything per point is done in the contact's frame (ContactFrame), with matrices formed once
-// per contact, so that a point costs two 3x3 products, the law and a cross product, all on plain
-// scalars (in SIMD lanes for the EL law, see PointUpdate). The frame turns with the contact
-// (SPEC 4), carrying the points' shear histories, except while every point of the contact is
-// intact: their forces are then independent of the frame (kn u_n, -ks u_s), so it is any axis
-// across n, as ElasticCondensation's catch-up draws it.
-//
-// A damaged contact (with `cond`) whose points all stayed inside their envelopes is handed to the
-// damaged condensation (damaged_condensation.hpp), which evaluates it from sums from the next step
-// on while they stay there.
-template <typename Law, bool kPointsOnly = false>
-[[gnu::always_inline]] inline void evaluate_contact(const Law& law, const ContactInputs& in,
-                                                    ContactState& cs, ElasticCondensation* cond,
-                                                    Index c) {
-  const ContactNetwork& net = in.net;
-  const Index a = net.particle_a[c];
-  const Index b = net.particle_b[c];
-  const Vec3 n = contact_normal(in, a, b, c);
-  const bool intact = cond && cond->intact[c];
-  const Vec3 t1 = intact ? any_perpendicular(n) : turned_frame_axis(in, cs, a, b, c, n);
-  cs.normal[c] = n;
-  cs.tangent[c] = t1;
-  const ContactFrame f = contact_frame(in, a, b, n, t1);
-  const PointTotals t = advance_points(law, in, cs, c, f);
   if constexpr (kPointsOnly) return;
-  if (intact && t.max_damage > 0) cond->intact[c] = 0;
-  store_contact(cs, c, f, t);
-  if constexpr (std::is_same_v<Law, BilinearSoftening>) {
-    if (cond && cond->damaged_enabled && !cond->intact[c] && cond->eligible[c] && t.outside == 0)
-      enter_damaged_condensation(law, in, cs, *cond, c, f);
-  }
-}
-
-// Contact c's points brought up to the evaluation `in` in the frame stored at it (a damaged
-// contact evaluated from its sums there: damaged_condensation.hpp), without turning the frame.
-template <typename Law>
-inline void catch_up_in_stored_frame(const Law& law, const ContactInputs& in, ContactState& cs,
-                                     Index c) {
-  const Index a = in.net.particle_a[c], b = in.net.particle_b[c];
-  advance_points(law, in, cs, c, contact_frame(in, a, b, cs.normal[c], cs.tangent[c]));
+  if (intact && max_damage > 0) cond->intact[c] = 0;
+  const Vec3 f = phi_n * n + phi_1 * t1 + phi_2 * t2;
+  const Vec3 moment_a = mom_n * n + mom_1 * t1 + mom_2 * t2;
+  cs.force_b[c] = f;
+  cs.torque_b[c] = moment_a - dx.cross(f);
+  cs.torque_a[c] = -moment_a;
+  cs.dissipated_damage[c] = damage;
+  cs.dissipated_friction[c] = friction;
 }
 
 // The loop over a network's contacts. With `cond` (the concrete network under BL), an intact
@@ -165,8 +194,7 @@ inline void catch_up_in_stored_frame(const Law& law, const ContactInputs& in, Co
 //
 // `previous` (with `cond`): the last evaluation's kinematics. A contact condensed then and visited
 // now first has its points brought up to that step, so that the law sees the history it would
-// have had (the dissipation of a point's first inelastic step reads its previous forces). Null
-// when the histories are already up to date (the first step after a restart).
+// have had (the dissipation of a point's first inelastic step reads its previous forces).
 template <typename Law>
 void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs,
                        ElasticCondensation* cond = nullptr,
@@ -187,12 +215,7 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
       const bool keep = cond->intact[c] && block.below_limits[c - begin];
       cond->condensed[c] = keep;
       if (keep) continue;
-      if (was_condensed && previous) evaluate_contact<Law, true>(law, *previous, cs, cond, c);
-      if (cond->damaged_active[c]) {
-        if (evaluate_damaged_condensed(in, cs, *cond, c)) continue;
-        cond->damaged_active[c] = 0;
-        if (previous) catch_up_in_stored_frame(law, *previous, cs, c);
-      }
+      if (was_condensed) evaluate_contact<Law, true>(law, *previous, cs, cond, c);
       evaluate_contact(law, in, cs, cond, c);
     }
   });
@@ -222,33 +245,19 @@ void evaluate_contacts(const Law& law, const ContactNetwork& net, const Bodies& 
   evaluate_contacts(law, in, cs);
 }
 
-// Only the damaged contacts in the state (what the strain energy of a history row needs).
-template <typename Law>
-void catch_up_damaged(const Law& law, const ContactInputs& in, ContactState& cs,
-                      const ElasticCondensation& cond) {
-  if (cond.damaged_active.empty()) return;
-  parallel_for(in.net.contact_count(), [&](Index c) {
-    if (cond.damaged_active[c]) catch_up_in_stored_frame(law, in, cs, c);
-  });
-}
-
 // Brings the histories of the contacts condensed at the last evaluation up to date, from that
 // evaluation's kinematics (`in`): what the point loop would have stored (the law's elastic update:
-// un, us, fn = kn (un - pn), fs = -ks (us - ps), their maxima). Intact contacts leave the state
-// (their sums need no history); damaged ones stay in it, their entry sums unchanged. Changes
-// nothing the next steps compute.
+// un, us, fn = kn un, fs = -ks us, their maxima). Changes nothing the next steps compute.
 template <typename Law>
 void catch_up_condensed(const Law& law, const ContactInputs& in, ContactState& cs,
                         ElasticCondensation& cond) {
-  if (cond.any_condensed) {
-    parallel_for(in.net.contact_count(), [&](Index c) {
-      if (!cond.condensed[c]) return;
-      evaluate_contact<Law, true>(law, in, cs, &cond, c);
-      cond.condensed[c] = 0;
-    });
-    cond.any_condensed = false;
-  }
-  catch_up_damaged(law, in, cs, cond);
+  if (!cond.any_condensed) return;
+  parallel_for(in.net.contact_count(), [&](Index c) {
+    if (!cond.condensed[c]) return;
+    evaluate_contact<Law, true>(law, in, cs, &cond, c);
+    cond.condensed[c] = 0;
+  });
+  cond.any_condensed = false;
 }
 
 }  // namespace rcdem

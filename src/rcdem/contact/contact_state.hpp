@@ -30,12 +30,8 @@ struct ContactState {
 
   // Normals at t = 0: centre to centre, or (with anchors) perpendicular to the bar's axis.
   // A point's shear force and accumulated shear displacement in the world frame.
-  Vec3 shear_force(const ContactNetwork& net, Index c, Index m) const {
-    return to_world(c, point.state(m, net.constants[m]).fs);
-  }
-  Vec3 shear_displacement(Index c, Index m) const {
-    return to_world(c, Vec3(point.us1[m], point.us2[m], 0.0));
-  }
+  Vec3 shear_force(Index c, Index m) const { return to_world(c, point[m].fs); }
+  Vec3 shear_displacement(Index c, Index m) const { return to_world(c, point[m].us); }
   Vec3 to_world(Index c, const Vec3& local) const {
     return local.x() * tangent[c] + local.y() * normal[c].cross(tangent[c]);
   }

@@ -69,8 +69,6 @@ ElasticCondensation ElasticCondensation::build(const ContactNetwork& net,
   }
   e.intact = e.eligible;
   e.condensed.assign(nc, 0);
-  e.damaged_active.assign(nc, 0);
-  e.damaged.resize(nc);
   return e;
 }
 
@@ -82,7 +80,6 @@ void ElasticCondensation::reset_flags(const ContactNetwork& net, const std::vect
     intact[static_cast<std::size_t>(c)] = all_intact;
   }
   std::fill(condensed.begin(), condensed.end(), std::uint8_t{0});
-  std::fill(damaged_active.begin(), damaged_active.end(), std::uint8_t{0});
   any_condensed = false;
 }
 
@@ -210,18 +207,6 @@ Real condensed_strain_energy(const CondensedSums& s, Index c, const Vec3& xa, co
 
 Index ElasticCondensation::condensed_count() const {
   return static_cast<Index>(std::count(condensed.begin(), condensed.end(), std::uint8_t{1}));
-}
-
-Index ElasticCondensation::damaged_condensed_count() const {
-  return static_cast<Index>(
-      std::count(damaged_active.begin(), damaged_active.end(), std::uint8_t{1}));
-}
-
-Index ElasticCondensation::damaged_condensed_point_count(const ContactNetwork& net) const {
-  Index n = 0;
-  for (Index c = 0; c < static_cast<Index>(damaged_active.size()); ++c)
-    if (damaged_active[static_cast<std::size_t>(c)]) n += net.points_of(c);
-  return n;
 }
 
 Index ElasticCondensation::condensed_point_count(const ContactNetwork& net) const {

@@ -54,36 +54,18 @@ struct CondensedSums {
   void resize(std::size_t n);
 };
 
-// A damaged contact evaluated from sums while every point stays inside its envelope
-// (damaged_condensation.hpp): what was fixed when it entered. Frame components (n, t1, t2) for
-// the displacements and offsets, reference ones (as rho) for the points' positions.
-struct DamagedSums {
-  Real room = 0;  // how far any point's displacement may move from its value at entry [m]
-  Real c[3] = {};   // E^T u_c at entry: the displacement at the kn-weighted centroid
-  Real m[9] = {};   // E^T (R_B - R_A) at entry, row-major
-  Real pi[3] = {};  // sum kn p: the points' offsets, kn-weighted
-  Real g[9] = {};   // G = sum kn rho (W p)^T, W = diag(1, alpha, alpha), row-major
-};
-
 struct ElasticCondensation {
   CondensedSums sums;                   // per contact
   std::vector<std::uint8_t> eligible;   // alpha uniform over the contact's points
   std::vector<std::uint8_t> intact;     // every point D = 0 (never set again once cleared)
   std::vector<std::uint8_t> condensed;  // the last evaluation used the sums (histories stale)
   bool any_condensed = false;           // some flag above is set
-  // Damaged contacts evaluated from sums (damaged_condensation.hpp): their histories are brought
-  // up to date on reading without leaving the state, so they stay in it until a bound fails.
-  bool damaged_enabled = true;  // solver.condense_damaged_contacts
-  std::vector<std::uint8_t> damaged_active;
-  std::vector<DamagedSums> damaged;     // per contact; meaningful where damaged_active
 
   // From the network's points and the particles' centres at t = 0; every contact intact.
   static ElasticCondensation build(const ContactNetwork& net, const std::vector<Vec3>& x0);
   // After a restart: intact from the points' damage, nothing condensed.
   void reset_flags(const ContactNetwork& net, const std::vector<Real>& damage);
   Index condensed_count() const;
-  Index damaged_condensed_count() const;
-  Index damaged_condensed_point_count(const ContactNetwork& net) const;  // their local points
   Index condensed_point_count(const ContactNetwork& net) const;  // their local points
 };
 

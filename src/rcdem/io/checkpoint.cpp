@@ -503,34 +503,12 @@ struct CheckpointAccess {
     });
   }
 
-  // Damaged contacts evaluated from sums (contact/damaged_condensation.hpp): their entry values,
-  // so that a restart keeps them in that state and continues bitwise. One record per such
-  // contact: its number, then room, c (3), m (9), pi (3), g (9).
-  using DamagedEntry = std::pair<Index, DamagedSums>;
-  template <typename R, typename E>
-  static void damaged_entry(R& r, E& e) {
-    r.i(e.first);
-    auto& d = e.second;
-    r.f(d.room);
-    for (auto& v : d.c) r.f(v);
-    for (auto& v : d.m) r.f(v);
-    for (auto& v : d.pi) r.f(v);
-    for (auto& v : d.g) r.f(v);
-  }
-  static constexpr std::uint32_t kDamagedEntryWidth = 26;
-
   template <typename Ar>
   static void save_parts(Ar& ar, const CheckpointParts& p) {
     // Condensed contacts' histories as if visited (elastic_condensation.hpp): what the file holds
     // does not depend on the condensation, and a restart needs no kinematics of the last step.
     p.sim->catch_up_condensed_points();
     simulation(ar, static_cast<const Simulation&>(*p.sim));
-    std::vector<DamagedEntry> damaged;
-    const ElasticCondensation& cond = p.sim->condensation_;
-    for (std::size_t c = 0; c < cond.damaged_active.size(); ++c)
-      if (cond.damaged_active[c]) damaged.emplace_back(static_cast<Index>(c), cond.damaged[c]);
-    ar.list("condensation.damaged", damaged, kDamagedEntryWidth,
-            [](auto& r, const DamagedEntry& e) { damaged_entry(r, e); });
     if (p.history) history(ar, static_cast<const History&>(*p.history));
     if (p.snapshots) snapshots(ar, static_cast<const SnapshotWriter&>(*p.snapshots));
     if (p.cracks) cracks(ar, static_cast<const CrackRecord&>(*p.cracks));
@@ -538,27 +516,13 @@ struct CheckpointAccess {
   }
   // After the state is in: which contacts are intact follows from the points' damage, and none is
   // condensed (their histories were complete when saved).
-  static void after_restore(Simulation& s, const std::vector<DamagedEntry>& damaged) {
-    s.evaluation_known_ = false;  // the histories were saved up to date
-    ElasticCondensation& cond = s.condensation_;
-    if (cond.sums.empty()) return;
-    cond.reset_flags(s.specimen_.contacts, s.contacts_.point.damage);
-    for (const auto& [c, d] : damaged) {
-      const auto i = static_cast<std::size_t>(c);
-      if (c < 0 || i >= cond.damaged_active.size() || cond.intact[i] || !cond.eligible[i])
-        throw Reject{fmt::format("section 'condensation.damaged' names contact {}, which is not "
-                                 "a damaged contact of this specimen",
-                                 c)};
-      if (!cond.damaged_enabled) continue;  // restarted with solver.condense_damaged_contacts off
-      cond.damaged_active[i] = 1;
-      cond.damaged[i] = d;
-    }
+  static void after_restore(Simulation& s) {
+    if (!s.condensation_.sums.empty())
+      s.condensation_.reset_flags(s.specimen_.contacts, s.contacts_.point.damage);
   }
   template <typename Ar>
-  static void load_parts(Ar& ar, const CheckpointParts& p, std::vector<DamagedEntry>& damaged) {
+  static void load_parts(Ar& ar, const CheckpointParts& p) {
     simulation(ar, *p.sim);
-    ar.list("condensation.damaged", damaged, kDamagedEntryWidth,
-            [](auto& r, DamagedEntry& e) { damaged_entry(r, e); });
     if (p.history) history(ar, *p.history);
     if (p.snapshots) snapshots(ar, *p.snapshots);
     if (p.cracks) cracks(ar, *p.cracks);
@@ -790,12 +754,11 @@ CheckpointHeader restore_checkpoint(const fs::path& file, const CheckpointParts&
           "written for another specimen (fingerprint {:016x}, the regenerated one is {:016x}): "
           "the generator gives a different specimen (another rcdem version?)",
           f.header.specimen_fingerprint, fp)};
-    std::vector<CheckpointAccess::DamagedEntry> damaged;
     Loader check(f, false);
-    CheckpointAccess::load_parts(check, parts, damaged);
+    CheckpointAccess::load_parts(check, parts);
     Loader apply(f, true);
-    CheckpointAccess::load_parts(apply, parts, damaged);
-    CheckpointAccess::after_restore(*parts.sim, damaged);
+    CheckpointAccess::load_parts(apply, parts);
+    CheckpointAccess::after_restore(*parts.sim);
     return f.header;
   } catch (const Reject& r) {
     throw Error(rejected(file, r.reason));

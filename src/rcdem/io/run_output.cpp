@@ -167,7 +167,7 @@ void SnapshotWriter::write(const Simulation& sim) {
     }
     g.add_polygon(ids);
     damage.push_back(a > 0.0 ? d / a : 0.0);
-    opening.push_back(pts.un[net.point_begin[c]]);
+    opening.push_back(pts[net.point_begin[c]].un);
     broken.push_back(all_broken ? 1 : 0);
   }
   g.add_cell_data("damage", damage);

@@ -304,7 +304,6 @@ Scenario convert(Reader& r, const std::string& text) {
   s.solver.particle_rotational_inertia_scaling =
       r.real("solver.particle_rotational_inertia_scaling");
   s.solver.condense_elastic_contacts = r.boolean("solver.condense_elastic_contacts");
-  s.solver.condense_damaged_contacts = r.boolean("solver.condense_damaged_contacts");
   for (const auto& inst : r.instances["plates.*"]) {
     PlateSettings p;
     p.name = inst.substr(inst.find('.') + 1);

@@ -58,7 +58,6 @@ struct SolverSettings {
   Real bar_rotational_inertia_scaling = 1.0;       // the cylinders' moments of inertia only
   Real particle_rotational_inertia_scaling = 1.0;  // the particles' moments of inertia only
   bool condense_elastic_contacts = true;  // contact/elastic_condensation.hpp
-  bool condense_damaged_contacts = true;  // contact/damaged_condensation.hpp
 };
 
 struct PlateSettings {

@@ -146,11 +146,6 @@ Schema build() {
               "their elastic limits from its sums (the same force and moment as its points give, "
               "to rounding) instead of visiting its points: faster, same results. false: visit "
               "every point every step."));
-  s.key(typed("solver.condense_damaged_contacts", KeyType::Boolean, true, Range{},
-              "With condense_elastic_contacts: evaluate a damaged concrete contact whose local "
-              "points all stay inside their softening envelopes (unloading or reloading, no cap "
-              "reached) from sums of their offsets as well. false: such contacts visit their "
-              "points every step."));
 
   s.section("plates", "Rigid plates: one [plates.NAME] table per plate, NAME of your choice.");
   s.section("plates.*",

@@ -82,10 +82,7 @@ Simulation::Simulation(const Scenario& sc, Specimen specimen)
   }
   contacts_.init(specimen_.contacts, bodies_.position);
   if (sc.solver.condense_elastic_contacts && law_kind_ == ConcreteLaw::BilinearSoftening)
-  {
     condensation_ = ElasticCondensation::build(specimen_.contacts, bodies_.position0);
-    condensation_.damaged_enabled = sc.solver.condense_damaged_contacts;
-  }
   body_contacts_ = BodyContacts::build(specimen_.contacts, bodies_.size());
   plates_ = make_plates(sc.plates, specimen_.geometry);
   plate_contacts_ = make_plate_contacts(plates_, specimen_.boundary, bodies_, sc.contact);
@@ -195,7 +192,7 @@ ContactInputs Simulation::concrete_inputs(const std::vector<Vec3>& positions,
 void Simulation::catch_up_condensed_points() const {
   // The last evaluation's kinematics: its centres and orientation matrices, both kept until the
   // next step forms them anew.
-  if (!condensation_.sums.empty() && evaluation_known_)
+  if (condensation_.any_condensed)
     catch_up_condensed(bilinear_, concrete_inputs(position_eval_, rotation_), contacts_,
                        condensation_);
 }
@@ -236,11 +233,9 @@ void Simulation::step() {
   const ContactInputs previous = concrete_inputs(position_prev_, rotation_prev_);
   if (law_kind_ == ConcreteLaw::BilinearSoftening)
     evaluate_contacts(bilinear_, concrete, contacts_,
-                      condensation_.sums.empty() ? nullptr : &condensation_,
-                      evaluation_known_ ? &previous : nullptr);
+                      condensation_.sums.empty() ? nullptr : &condensation_, &previous);
   else
     evaluate_contacts(elastic_, concrete, contacts_);
-  evaluation_known_ = true;
   // Steel-concrete interfaces, bar by bar with its law; interaction nodes.
   for (std::size_t k = 0; k < interface_states_.size(); ++k) {
     const InterfaceContacts& ic = specimen_.interfaces[k];
@@ -437,11 +432,6 @@ Real points_strain_energy(const ContactNetwork& net, const ContactState& cs) {
 
 Real Simulation::concrete_strain_energy() const {
   const ContactNetwork& net = specimen_.contacts;
-  // Damaged contacts evaluated from sums are read from their points, brought up to date (their
-  // energy needs the offsets of every point); that leaves them in their state.
-  if (!condensation_.sums.empty() && evaluation_known_)
-    catch_up_damaged(bilinear_, concrete_inputs(position_eval_, rotation_), contacts_,
-                     condensation_);
   if (!condensation_.any_condensed) return points_strain_energy(net, contacts_);
   // Condensed contacts from their sums at the last evaluation's kinematics (their histories are
   // stale), the others from their points.

@@ -72,14 +72,6 @@ class Simulation {
   // Concrete contacts evaluated from their sums at the last step (0 when condensation is off,
   // and after a read of the state above has brought their points up to date).
   Index condensed_contacts() const { return condensation_.condensed_count(); }
-  // Which contacts the last step evaluated from sums (for diagnostics: bench/envelope_census).
-  const ElasticCondensation& condensation() const { return condensation_; }
-  // Damaged concrete contacts evaluated from sums inside their envelopes (damaged_condensation.hpp);
-  // reading the state leaves them so.
-  Index damaged_condensed_contacts() const { return condensation_.damaged_condensed_count(); }
-  Index damaged_condensed_points() const {
-    return condensation_.damaged_condensed_point_count(specimen_.contacts);
-  }
   Index condensed_points() const { return condensation_.condensed_point_count(specimen_.contacts); }
   // Brings condensed contacts' point histories up to the last step (contacts() does it).
   void catch_up_condensed_points() const;
@@ -137,9 +129,6 @@ class Simulation {
   mutable ElasticCondensation condensation_;  // empty when off or for the EL law
   // The bodies' centres at the last evaluation and the one before (with rotation_prev_).
   std::vector<Vec3> position_eval_, position_prev_;
-  // Whether position_eval_ and rotation_ are the last evaluation's: not after a restart, whose
-  // checkpoint holds every history up to date (nothing to catch up before the next step).
-  bool evaluation_known_ = true;
   BodyContacts body_contacts_;
   std::vector<Plate> plates_;
   PlateContacts plate_contacts_;

@@ -41,18 +41,20 @@ struct BilinearSoftening {
   template <typename V>
   [[gnu::always_inline]] LawResult update(const LocalPointConstants& c, BasicPointState<V>& s,
                                           Real u_n, const V& u_s) const {
-    // (1)-(2) in tension-positive form, fs resisting the slip of B relative to A, written with
-    // the offsets (local_point_state.hpp): fn = kn (un - pn), the increments' sum fn_old + kn dun
-    // without its rounding. A point that has never been capped has pn = 0, ps = 0, so it holds
-    // exactly kn un and -ks us: what lets the contact loop skip intact points' histories
-    // (elastic_condensation.hpp) and evaluate damaged contacts inside their envelopes from sums
-    // (damaged_condensation.hpp).
-    const Real fn_old = c.kn * (s.un - s.pn);
-    const V fs_old = -c.ks * (s.us - s.ps);
+    const Real fn_old = s.fn;
+    const V fs_old = s.fs;
+    const Real dun = u_n - s.un;
+    const V dus = u_s - s.us;
     s.un = u_n;
     s.us = u_s;
-    const Real fn_trial = c.kn * (u_n - s.pn);
-    const V fs_trial = -c.ks * (u_s - s.ps);
+    // (1)-(2) in tension-positive form: fs resists the slip of B relative to A. A point that has
+    // never left the elastic range (D = 0) holds exactly fn = kn un and fs = -ks us, so its trial
+    // forces are taken from the accumulated displacement: the same numbers as the increments'
+    // sum, but independent of how the stored history was rounded, which lets the contact loop
+    // skip such points' histories altogether (contact/elastic_condensation.hpp).
+    const bool intact = s.damage == 0;
+    const Real fn_trial = intact ? c.kn * u_n : fn_old + c.kn * dun;
+    const V fs_trial = intact ? V(-c.ks * u_s) : V(fs_old - c.ks * dus);
 
     // The elastic path, which most points take most steps, needs no square root and no division:
     // limits are compared as kn u_max > F_max and on squared lengths.
@@ -82,10 +84,6 @@ struct BilinearSoftening {
     const Real fs_trial_sq = fs_trial.squaredNorm();
     const bool shear_capped = fs_trial_sq > fs_cap * fs_cap;
     s.fs = shear_capped ? V((fs_cap / std::sqrt(fs_trial_sq)) * fs_trial) : fs_trial;
-    // A capped direction moves its offset so that the capped force is kn (un - pn) again.
-    if (normal_capped) s.pn = u_n - s.fn / c.kn;
-    if (shear_capped) s.ps = u_s + (1 / c.ks) * s.fs;
-    r.left_envelope = normal_capped || shear_capped || r.damage_grew;
 
     // Dissipation = work - dE, with E = fn^2/2kn + |fs|^2/2ks and the work of the relative
     // displacement fn dun - fs . dus (fs resists dus). Since dun = (fn_trial - fn_old)/kn, this is

@@ -13,12 +13,14 @@ struct Elastic {
   template <typename V>
   [[gnu::always_inline]] LawResult update(const LocalPointConstants& c, BasicPointState<V>& s,
                                           Real u_n, const V& u_s) const {
+    const Real dun = u_n - s.un;
+    const V dus = u_s - s.us;
     s.un = u_n;
     s.us = u_s;
     s.un_max = std::max(s.un_max, s.un);
     s.us_max_sq = std::max(s.us_max_sq, s.us.squaredNorm());
-    s.fn = c.kn * (u_n - s.pn);  // (1), tension positive; the offsets stay 0 under this law
-    s.fs = -c.ks * (u_s - s.ps);  // (2), resists B's slip relative to A
+    s.fn += c.kn * dun;  // (1), tension positive
+    s.fs -= c.ks * dus;  // (2), resists B's slip relative to A
     return {};
   }
 };

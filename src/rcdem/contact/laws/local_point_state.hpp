@@ -31,18 +31,10 @@ struct PlaneVec {
 // History of one local point, SI units. Tension-positive (SPEC 1): un > 0 is opening, fn > 0 is
 // tension. The force on particle B is (-fn n + fs) and on A its opposite, so an opening pulls B
 // back and fs opposes B's slip relative to A. V: Vec3, or PlaneVec in the contact loop.
-//
-// The history proper is the displacement and its offsets: the forces are fn = kn (un - pn) and
-// fs = -ks (us - ps), so a point inside its envelope keeps pn, ps unchanged and its force is
-// affine in the displacement, exactly; a contact whose points all stay inside can then be
-// evaluated from sums (contact/damaged_condensation.hpp). fn and fs are the law's results, for
-// whoever reads the point after an update; the law does not read them.
 template <typename V>
 struct BasicPointState {
-  Real fn = 0;         // normal force [N], tension positive (output of the update)
-  V fs = V::Zero();    // shear force [N], in the contact plane (output of the update)
-  Real pn = 0;         // normal offset [m]: the opening at which fn = 0 (0 until capped)
-  V ps = V::Zero();    // shear offset [m]: the slip at which fs = 0 (0 until capped)
+  Real fn = 0;         // normal force [N], tension positive
+  V fs = V::Zero();    // shear force [N], in the contact plane
   Real un = 0;         // accumulated normal displacement [m], opening positive
   V us = V::Zero();    // accumulated shear displacement [m], in the contact plane
   Real un_max = 0;     // historical maximum of un (>= 0), drives D_n (S3)
@@ -70,9 +62,6 @@ struct LawResult {
   // The part of `dissipated` due to Coulomb friction mu_c max(0, -fn) (S5); the rest is damage.
   Real dissipated_friction = 0;
   bool damage_grew = false;
-  // The update left the envelope (a force capped or the damage grown): its offsets or damage
-  // changed. A point that never does keeps fn = kn (un - pn), fs = -ks (us - ps) with fixed pn, ps.
-  bool left_envelope = false;
 };
 
 }  // namespace rcdem
