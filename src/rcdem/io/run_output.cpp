@@ -141,7 +141,9 @@ void SnapshotWriter::write(const Simulation& sim) {
   if (!sim.nodes().empty()) write_bars(sim, stamp, enc);
   if (!facets_) return;
   const ContactNetwork& net = sim.specimen().contacts;
-  const auto& pts = sim.contacts().point;
+  // Read once: every call of contacts() checks for condensed contacts to bring up to date.
+  const ContactState& cs = sim.contacts();
+  const auto& pts = cs.point;
   UnstructuredGrid g;
   std::vector<Real> damage, opening;
   std::vector<std::uint8_t> broken;
@@ -150,7 +152,7 @@ void SnapshotWriter::write(const Simulation& sim) {
     const Index ia = net.particle_a[c], ib = net.particle_b[c];
     const Eigen::Matrix3d ra = b.orientation[ia].toRotationMatrix();
     const Eigen::Matrix3d rb = b.orientation[ib].toRotationMatrix();
-    const Vec3& n = sim.contacts().normal[c];
+    const Vec3& n = cs.normal[c];
     ids.clear();
     Real d = 0.0, a = 0.0;
     bool all_broken = true;
