@@ -36,8 +36,7 @@ int main(int argc, char** argv) {
     const rcdem::Scenario sc = rcdem::load_scenario(argv[1]);
     rcdem::Simulation sim(sc, rcdem::build_specimen(sc));
     const auto header = rcdem::io::inspect_checkpoint(argv[3]);
-    rcdem::io::restore_checkpoint(argv[3], rcdem::io::CheckpointParts{&sim},
-                                  header.scenario_hash);
+    rcdem::io::restore_checkpoint(argv[3], rcdem::io::CheckpointParts{&sim}, header.scenario_hash);
     const auto& net = sim.specimen().contacts;
     const rcdem::Index nc = net.contact_count();
     std::vector<long> inside_run(static_cast<std::size_t>(nc), 0);
@@ -77,11 +76,14 @@ int main(int argc, char** argv) {
       sum_inside += inside;
       sum_open += open;
       if (k % 20 == 0)
-        std::printf("step +%ld: damaged contacts %ld, every point inside %ld, every point open %ld\n",
-                    k, damaged, inside, open);
+        std::printf(
+            "step +%ld: damaged contacts %ld, every point inside %ld, every point open %ld\n", k,
+            damaged, inside, open);
     }
     const long whole = std::count(inside_run.begin(), inside_run.end(), steps);
-    const auto mean = [steps](long v) { return static_cast<double>(v) / static_cast<double>(steps); };
+    const auto mean = [steps](long v) {
+      return static_cast<double>(v) / static_cast<double>(steps);
+    };
     std::printf(
         "mean per step: damaged contacts %.0f, every point inside %.0f, every point open %.0f; "
         "damaged points inside %.3f; contacts inside at every one of the %ld steps %ld\n",
