@@ -32,7 +32,8 @@ with tempfile.TemporaryDirectory() as tmp:
     t0 = time.time()
     while not os.path.exists(marker) and time.time() - t0 < 300 and p.poll() is None:
         time.sleep(0.2)
-    time.sleep(3.0)
+    # Soon after the set-up: the quick AN0 beam now steps to its end in a few seconds on 2 cores.
+    time.sleep(0.5)
     p.send_signal(signal.SIGINT)
     t_sig = time.time()
     _, err = p.communicate(timeout=120)
