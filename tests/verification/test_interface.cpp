@@ -418,6 +418,19 @@ TEST(InterfaceLawParameters, NlbHalvesTheStrengthsOnly) {
   same_except_strength(b);
   EXPECT_EQ(b.sigma_nt, 0.5 * c.sigma_nt);
   EXPECT_EQ(b.tau, 0.5 * c.tau);
+  // The scenario's scales act after NL-B's halving: strengths by one, fracture energies by the
+  // other, and nothing else.
+  const ContactParameters s = interface_parameters(c, InterfaceLaw::NL_B, 0.25, 0.5);
+  EXPECT_EQ(s.E_bar, c.E_bar);
+  EXPECT_EQ(s.alpha, c.alpha);
+  EXPECT_EQ(s.mu_c, c.mu_c);
+  EXPECT_DOUBLE_EQ(s.sigma_nt, 0.125 * c.sigma_nt);
+  EXPECT_DOUBLE_EQ(s.tau, 0.125 * c.tau);
+  EXPECT_DOUBLE_EQ(s.G_fn, 0.5 * c.G_fn);
+  EXPECT_DOUBLE_EQ(s.G_fs, 0.5 * c.G_fs);
+  const ContactParameters sa = interface_parameters(c, InterfaceLaw::NL_A, 0.5, 1.0);
+  EXPECT_EQ(sa.sigma_nt, b.sigma_nt);
+  EXPECT_EQ(sa.tau, b.tau);
 }
 
 TEST(InterfaceLawParameters, BuiltContactsCarryTheirBarsLaw) {

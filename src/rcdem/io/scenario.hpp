@@ -80,6 +80,8 @@ struct BarSettings {
   Real cylinder_length = 0.032;
   Real E = 200.0e9, nu = 0.3, f_y = 0.0, density = 7850.0;
   InterfaceLaw interface = InterfaceLaw::NL_B;
+  Real interface_strength_scale = 1.0;  // on sigma_n,t and tau of a BL interface
+  Real interface_energy_scale = 1.0;    // on G_fn and G_fs of a BL interface
   Real sphere_spacing = 0.0;  // 0 = D / 2
   Real pull_velocity = 0.0;   // pull-out of the first cylinder along end -> start
   Real pull_ramp_time = 0.0;

@@ -215,6 +215,11 @@ Schema build() {
   s.key(choice("bars.*.interface", std::string("NL-B"), {"EL", "NL-A", "NL-B"},
                "Steel-concrete interface law: 'EL' elastic, 'NL-A' BL with the concrete's "
                "parameters, 'NL-B' BL with sigma_n,t and tau halved (paper 3, Table 3)."));
+  s.key(real("bars.*.interface_strength_scale", 1.0, Range{0.0, kInf, true, false}, "",
+             "Multiplies sigma_n,t and tau of a BL interface (NL-A, NL-B; after NL-B's halving): "
+             "for studies of the bond beyond the paper's two variants."));
+  s.key(real("bars.*.interface_energy_scale", 1.0, Range{0.0, kInf, true, false}, "",
+             "Multiplies G_fn and G_fs of a BL interface (NL-A, NL-B)."));
   s.key(real("bars.*.pull_velocity", 0.0, Range{0.0, kInf}, "m/s",
              "Pull-out: the bar's first cylinder (at 'start') is moved at this speed along end -> "
              "start, its rotation held (0 = not pulled)."));
