@@ -353,12 +353,13 @@ Scenario convert(Reader& r, const std::string& text) {
     b.interface_energy_scale = r.real(inst + ".interface_energy_scale");
     if (b.interface == InterfaceLaw::EL &&
         (b.interface_strength_scale != 1.0 || b.interface_energy_scale != 1.0)) {
-      const std::string key = inst + (b.interface_strength_scale != 1.0
-                                          ? ".interface_strength_scale"
-                                          : ".interface_energy_scale");
-      fail("{}: key '{}': expected only with a BL interface (NL-A, NL-B); interface = \"EL\" "
-           "has no strength to scale",
-           r.at(key), key);
+      const std::string key =
+          inst + (b.interface_strength_scale != 1.0 ? ".interface_strength_scale"
+                                                    : ".interface_energy_scale");
+      fail(
+          "{}: key '{}': expected only with a BL interface (NL-A, NL-B); interface = \"EL\" "
+          "has no strength to scale",
+          r.at(key), key);
     }
     b.sphere_spacing = r.real(inst + ".sphere_spacing");
     b.pull_velocity = r.real(inst + ".pull_velocity");
