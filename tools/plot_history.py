@@ -31,6 +31,9 @@ def curve(run_dir):
 
 
 args = sys.argv[1:]
+if any(a in ("-h", "--help") for a in args):
+    print(__doc__.strip())
+    sys.exit(0)
 out = None
 labels = None
 if "-o" in args:
@@ -48,6 +51,8 @@ if len(args) > 1 and not out:
 fig, ax = plt.subplots(figsize=(7, 4.5))
 for k, d in enumerate(args):
     disp, load, control = curve(d)
+    if not os.path.isdir(d):
+        sys.exit(f"plot_history.py: {d}: not a run directory")
     label = labels[k] if labels and k < len(labels) else os.path.basename(os.path.normpath(d))
     ax.plot([1e3 * x for x in disp], [1e-3 * f for f in load], label=label)
 ax.set_xlabel(f"{control} displacement (mm)")

@@ -58,12 +58,18 @@ struct BilinearSoftening {
 
     // The elastic path, which most points take most steps, needs no square root and no division:
     // limits are compared as kn u_max > F_max and on squared lengths.
+    // The damage is a function of the two maxima alone (S3)-(S4), and every update leaves
+    // D >= that function, so a step that raises neither maximum leaves D as it is: a damaged
+    // point inside its envelope (most of a cracked beam's points, most steps) skips the divisions
+    // and the square root below, with the same result to the bit.
+    const Real us_sq = s.us.squaredNorm();
+    const bool max_grew = s.un > s.un_max || us_sq > s.us_max_sq;
     s.un_max = std::max(s.un_max, s.un);
-    s.us_max_sq = std::max(s.us_max_sq, s.us.squaredNorm());
+    s.us_max_sq = std::max(s.us_max_sq, us_sq);
     Real d = s.damage;
     const bool past_n = c.kn * s.un_max > c.fn_max;
     const bool past_s = c.ks * c.ks * s.us_max_sq > c.c_max * c.c_max;
-    if (past_n || past_s) {
+    if (max_grew && (past_n || past_s)) {
       const Real d_n = past_n ? softening_damage(s.un_max, c.fn_max / c.kn, u_nu()) : 0;  // (S3)
       const Real d_s =
           past_s ? softening_damage(std::sqrt(s.us_max_sq), c.c_max / c.ks, u_su()) : 0;  // (S3)
