@@ -412,3 +412,30 @@ TEST(LawKind, WithLawPassesTheConcreteLawType) {
     }
   }
 }
+
+// (S3)-(S4) make D a non-decreasing function of the two historical maxima, which themselves never
+// decrease, so after any path D equals that function of the current maxima, to the bit. The law
+// evaluates it only on steps that raise a maximum; a path that unloads, reloads and slips in
+// every direction must still meet it at every step.
+TEST(BilinearSoftening, DamageIsAlwaysTheFunctionOfTheCurrentMaxima) {
+  const BilinearSoftening law = table2();
+  Driver p{point_constants(law)};
+  std::mt19937_64 rng(777);
+  std::normal_distribution<Real> g(0.0, 1.0);
+  const Real dn = 0.02 * p.c.fn_max / p.c.kn;
+  const Real ds = 0.02 * p.c.c_max / p.c.ks;
+  int partial = 0;
+  for (int i = 0; i < 20000; ++i) {
+    p.step(law, dn * (0.02 + g(rng)), Vec3(ds * (0.02 + g(rng)), ds * g(rng), 0.0));
+    const LocalPointConstants& c = p.c;
+    const Real d_n = c.kn * p.s.un_max > c.fn_max
+                         ? softening_damage(p.s.un_max, c.fn_max / c.kn, law.u_nu())
+                         : 0.0;
+    const Real d_s = c.ks * c.ks * p.s.us_max_sq > c.c_max * c.c_max
+                         ? softening_damage(std::sqrt(p.s.us_max_sq), c.c_max / c.ks, law.u_su())
+                         : 0.0;
+    ASSERT_EQ(p.s.damage, std::min<Real>(1, d_n + d_s)) << "step " << i;
+    if (p.s.damage > 0 && p.s.damage < 1) ++partial;
+  }
+  EXPECT_GT(partial, 1000);  // the path spent long inside the softening range
+}
