@@ -48,14 +48,14 @@ int main(int argc, char** argv) {
           tension += c.fn_max;
         }
         const double yield = bar.f_y * std::numbers::pi * bar.diameter * bar.diameter / 4.0;
+        const double bond = cohesion / surface;
+        const double demand = yield / (std::numbers::pi * bar.diameter * anchorage);
         std::printf(
             "%s bar=%s D=%g contacts=%ld area_over_bar_surface=%.3f nominal_bond_strength_Pa=%.4g "
             "nominal_tensile_Pa=%.4g yield_bond_demand_Pa=%.4g anchorage_m=%g "
             "capacity_over_demand=%.3f\n",
             argv[k], bar.name.c_str(), bar.diameter, static_cast<long>(ic.net.contact_count()),
-            area / surface, cohesion / surface, tension / surface,
-            yield / (std::numbers::pi * bar.diameter * anchorage), anchorage,
-            (cohesion / surface) / (yield / (std::numbers::pi * bar.diameter * anchorage)));
+            area / surface, bond, tension / surface, demand, anchorage, bond / demand);
       }
     }
   } catch (const rcdem::Error& e) {

@@ -408,19 +408,26 @@ TEST(InterfaceLawParameters, NlbHalvesTheStrengthsOnly) {
     EXPECT_EQ(p.G_fn, c.G_fn);
     EXPECT_EQ(p.G_fs, c.G_fs);
   };
+  const auto bar = [](InterfaceLaw law, Real strength_scale = 1.0, Real energy_scale = 1.0) {
+    BarSettings s;
+    s.interface = law;
+    s.interface_strength_scale = strength_scale;
+    s.interface_energy_scale = energy_scale;
+    return s;
+  };
   for (InterfaceLaw law : {InterfaceLaw::EL, InterfaceLaw::NL_A}) {
-    const ContactParameters p = interface_parameters(c, law);
+    const ContactParameters p = interface_parameters(c, bar(law));
     same_except_strength(p);
     EXPECT_EQ(p.sigma_nt, c.sigma_nt);
     EXPECT_EQ(p.tau, c.tau);
   }
-  const ContactParameters b = interface_parameters(c, InterfaceLaw::NL_B);
+  const ContactParameters b = interface_parameters(c, bar(InterfaceLaw::NL_B));
   same_except_strength(b);
   EXPECT_EQ(b.sigma_nt, 0.5 * c.sigma_nt);
   EXPECT_EQ(b.tau, 0.5 * c.tau);
   // The scenario's scales act after NL-B's halving: strengths by one, fracture energies by the
   // other, and nothing else.
-  const ContactParameters s = interface_parameters(c, InterfaceLaw::NL_B, 0.25, 0.5);
+  const ContactParameters s = interface_parameters(c, bar(InterfaceLaw::NL_B, 0.25, 0.5));
   EXPECT_EQ(s.E_bar, c.E_bar);
   EXPECT_EQ(s.alpha, c.alpha);
   EXPECT_EQ(s.mu_c, c.mu_c);
@@ -428,7 +435,7 @@ TEST(InterfaceLawParameters, NlbHalvesTheStrengthsOnly) {
   EXPECT_DOUBLE_EQ(s.tau, 0.125 * c.tau);
   EXPECT_DOUBLE_EQ(s.G_fn, 0.5 * c.G_fn);
   EXPECT_DOUBLE_EQ(s.G_fs, 0.5 * c.G_fs);
-  const ContactParameters sa = interface_parameters(c, InterfaceLaw::NL_A, 0.5, 1.0);
+  const ContactParameters sa = interface_parameters(c, bar(InterfaceLaw::NL_A, 0.5));
   EXPECT_EQ(sa.sigma_nt, b.sigma_nt);
   EXPECT_EQ(sa.tau, b.tau);
 }

@@ -76,8 +76,7 @@ Simulation::Simulation(const Scenario& sc, Specimen specimen)
     state.init(ic.net, bodies_.position, &ic.anchor0, &axes);
     interface_states_.push_back(std::move(state));
     const InterfaceLaw law = sc.bars[k].interface;
-    const ContactParameters p = interface_parameters(
-        sc.contact, law, sc.bars[k].interface_strength_scale, sc.bars[k].interface_energy_scale);
+    const ContactParameters p = interface_parameters(sc.contact, sc.bars[k]);
     interface_law_.push_back(law);
     interface_bl_.push_back(BilinearSoftening{p.sigma_nt, p.tau, p.G_fn, p.G_fs, p.mu_c});
   }

@@ -8,17 +8,16 @@
 
 namespace rcdem {
 
-ContactParameters interface_parameters(const ContactParameters& concrete, InterfaceLaw law,
-                                       Real strength_scale, Real energy_scale) {
+ContactParameters interface_parameters(const ContactParameters& concrete, const BarSettings& bar) {
   ContactParameters p = concrete;
-  if (law == InterfaceLaw::NL_B) {
+  if (bar.interface == InterfaceLaw::NL_B) {
     p.sigma_nt *= 0.5;
     p.tau *= 0.5;
   }
-  p.sigma_nt *= strength_scale;
-  p.tau *= strength_scale;
-  p.G_fn *= energy_scale;
-  p.G_fs *= energy_scale;
+  p.sigma_nt *= bar.interface_strength_scale;
+  p.tau *= bar.interface_strength_scale;
+  p.G_fn *= bar.interface_energy_scale;
+  p.G_fs *= bar.interface_energy_scale;
   return p;
 }
 
@@ -71,9 +70,8 @@ std::vector<InterfaceContacts> build_interface_contacts(const Particles& p, cons
   for (const auto& [key, m] : merged) {
     InterfaceContacts& ic = out[static_cast<std::size_t>(key.second)];
     ContactNetwork& net = ic.net;
-    const BarSettings& bar = bars[static_cast<std::size_t>(key.second)];
-    const ContactParameters params = interface_parameters(
-        concrete, bar.interface, bar.interface_strength_scale, bar.interface_energy_scale);
+    const ContactParameters params =
+        interface_parameters(concrete, bars[static_cast<std::size_t>(key.second)]);
     const Index s = m.nearest;
     net.particle_a.push_back(key.first);
     net.particle_b.push_back(steel.body[s - steel.first]);

@@ -21,11 +21,10 @@ struct SteelSpheres {
 };
 
 // The interface contact parameters of a bar: NL-A and EL use the concrete's, NL-B halves
-// sigma_n,t and tau (paper 3). `strength_scale` then multiplies sigma_n,t and tau and
-// `energy_scale` G_fn and G_fs (the scenario's bars.*.interface_strength_scale and
-// interface_energy_scale, for studies of the bond beyond the paper's two variants).
-ContactParameters interface_parameters(const ContactParameters& concrete, InterfaceLaw law,
-                                       Real strength_scale = 1.0, Real energy_scale = 1.0);
+// sigma_n,t and tau (paper 3); the bar's interface_strength_scale then multiplies sigma_n,t and
+// tau, and its interface_energy_scale G_fn and G_fs (studies of the bond beyond the paper's two
+// variants).
+ContactParameters interface_parameters(const ContactParameters& concrete, const BarSettings& bar);
 
 std::vector<InterfaceContacts> build_interface_contacts(const Particles& particles,
                                                         const CellComplex& cells,
