@@ -5,24 +5,28 @@
 # Usage:
 #   bash bench/throughput.sh [STEPS=500] [BUILD_DIR=build]
 #     1. header: date, nproc, CPU model;
-#     2. STREAM triad (build/bench/rcdem_stream) at each rcdem thread count;
-#     3. rcdem_step_bench, STEPS timed steps after 50 warm-up ones (best of REPEATS), on the 160 mm cube
-#        (examples/uniaxial/compression.toml, used as is: the step bench ignores stop rules) and on
-#        the AN4 NL-B beam (examples/three_point_bending/study/AN4_NL-B.toml, in place: it includes
-#        a file by a relative path), at 1 and 2 threads: particle-, contact-, local-point-steps/s,
-#        counted bytes per step (the "# bytes:" line), achieved GB/s and fraction_of_stream;
-#     4. YADE CpmMat (bench/yade_cpm.py) on as many spheres as the cube has particles, STEPS steps
-#        (best of REPEATS), at THREADS threads;
-#     5. last line: ratio_contact_steps_vs_yade=<rcdem cube contact-steps/s / YADE's>, both at
-#        THREADS threads.
+#     2. rcdem_step_bench, STEPS timed steps after 50 warm-up ones (best of REPEATS), on the 160 mm
+#        cube (examples/uniaxial/compression.toml, used as is: the step bench ignores stop rules)
+#        and on the AN4 NL-B beam (examples/three_point_bending/study/AN4_NL-B.toml, in place: it
+#        includes a file by a relative path), at 1 and 2 threads, ROUNDS times each, every time
+#        right after a STREAM triad (build/bench/rcdem_stream) at the same thread count:
+#        particle-, contact-, local-point-steps/s, counted bytes per step (the "# bytes:" line),
+#        achieved GB/s, and fraction_of_stream per round, then its median over the rounds;
+#     3. YADE CpmMat (bench/yade_cpm.py) on as many spheres as the cube has particles, STEPS steps,
+#        ROUNDS times in one YADE process, each followed by rcdem's cube (best of REPEATS) at
+#        THREADS threads: one ratio per round, and the best-against-best ratio in a comment;
+#     4. last line: ratio_contact_steps_vs_yade=<the median of the rounds' ratios of rcdem's cube
+#        contact-steps/s to YADE's>, both at THREADS threads.
+#     Why rounds: this machine's speed and bandwidth drift by 2-3x over minutes (bench/RESULTS.md,
+#     session 11), so only figures taken seconds apart can be compared.
 #   bash bench/throughput.sh --scaling [STEPS=200] [BUILD_DIR=build]
 #     rcdem_step_bench on cubes of SCALING_SIZES (default 0.07 0.11 0.16 m: about 0.9k, 3.4k and
 #     10.3k particles, 12x) at THREADS threads; one line per size with the time per step per
 #     particle.
 # Environment (all optional): THREADS (2: the YADE comparison and the scaling runs), RCDEM_THREADS
 # ("1 2"), STREAM_N (4e7 elements per array: 3 x 320 MB), YADE_N (the cube's particle count),
-# YADE_STEPS (STEPS), REPEATS (3: each peer's fastest of 3 back-to-back timings; this shared
-# machine's neighbours slow a run by up to 2x), SKIP_BEAM=1, SCALING_SIZES. A quick end-to-end check:
+# YADE_STEPS (STEPS), REPEATS (3: rcdem's fastest of 3 back-to-back timings within a round),
+# ROUNDS (3), SKIP_BEAM=1, SCALING_SIZES. A quick end-to-end check:
 #   STREAM_N=1e7 RCDEM_THREADS=1 THREADS=1 SKIP_BEAM=1 YADE_N=2000 bash bench/throughput.sh 20
 # Build first: ninja -C build rcdem_stream rcdem_step_bench. YADE: Debian's yade (/usr/bin/yade).
 set -euo pipefail
@@ -38,6 +42,7 @@ BUILD=${2:-build}
 THREADS=${THREADS:-2}
 RCDEM_THREADS=${RCDEM_THREADS:-"1 2"}
 REPEATS=${REPEATS:-3}
+ROUNDS=${ROUNDS:-3}
 STREAM_N=${STREAM_N:-4e7}
 STEP_BENCH="$BUILD/bench/rcdem_step_bench"
 STREAM="$BUILD/bench/rcdem_stream"
@@ -81,19 +86,19 @@ if [[ $SCALING == 1 ]]; then
   exit 0
 fi
 
-# STREAM at each thread count used (the fraction compares like with like).
-declare -A stream_gbps
-for t in $(echo "$RCDEM_THREADS $THREADS" | tr ' ' '\n' | sort -un); do
-  line=$(OMP_NUM_THREADS=$t "$STREAM" "$STREAM_N")
-  echo "$line"
-  stream_gbps[$t]=$(kv stream_triad_GBps "$line")
-done
+# The median of numbers (one per argument).
+median() { printf '%s\n' "$@" | sort -g | awk '{ v[NR] = $1 } END { m = (NR % 2) ? v[(NR + 1) / 2] : 0.5 * (v[NR / 2] + v[NR / 2 + 1]); printf "%.4g", m }'; }
 
+# rcdem: ROUNDS rounds per scenario and thread count, each a STREAM triad at that thread count
+# and right after it the step bench (best of REPEATS): the fraction of a round compares two figures
+# taken seconds apart, and the median over the rounds is the result (this machine's bandwidth
+# drifts by 2x over minutes: a STREAM figure from the start of the run says little about a timing
+# ten minutes later).
 scenarios=("cube=examples/uniaxial/compression.toml")
 [[ "${SKIP_BEAM:-0}" == 1 ]] || scenarios+=("AN4_NL-B=examples/three_point_bending/study/AN4_NL-B.toml")
-declare -A rcdem_cs
 cube_bodies=""
 cube_points_per_contact=""
+cube_best=0
 for entry in "${scenarios[@]}"; do
   name=${entry%%=*}
   file=${entry#*=}
@@ -101,32 +106,65 @@ for entry in "${scenarios[@]}"; do
   list=$RCDEM_THREADS
   [[ $name == cube && " $list " != *" $THREADS "* ]] && list="$list $THREADS"
   for t in $list; do
-    out=$(OMP_NUM_THREADS=$t "$STEP_BENCH" "$file" "$K" 50 "$REPEATS")
-    echo "$out"
-    line=$(grep -v '^#' <<<"$out")
-    gbps=$(kv achieved_GBps "$line")
-    echo "$name threads=$t achieved_GBps=$gbps stream_triad_GBps=${stream_gbps[$t]} fraction_of_stream=$(calc "$gbps / ${stream_gbps[$t]}")"
-    rcdem_cs[$name.$t]=$(kv contact_steps_per_s "$line")
-    if [[ $name == cube ]]; then
-      cube_bodies=$(kv bodies "$line")
-      cube_points_per_contact=$(calc "$(kv local_points "$line") / $(kv contacts "$line")")
-    fi
+    fractions=()
+    for ((r = 1; r <= ROUNDS; r++)); do
+      sline=$(OMP_NUM_THREADS=$t "$STREAM" "$STREAM_N")
+      echo "$sline"
+      sgbps=$(kv stream_triad_GBps "$sline")
+      out=$(OMP_NUM_THREADS=$t "$STEP_BENCH" "$file" "$K" 50 "$REPEATS")
+      echo "$out"
+      line=$(grep -v '^#' <<<"$out")
+      gbps=$(kv achieved_GBps "$line")
+      f=$(calc "$gbps / $sgbps")
+      fractions+=("$f")
+      echo "$name threads=$t round=$r achieved_GBps=$gbps stream_triad_GBps=$sgbps fraction_of_stream=$f"
+      if [[ $name == cube ]]; then
+        cube_bodies=$(kv bodies "$line")
+        cube_points_per_contact=$(calc "$(kv local_points "$line") / $(kv contacts "$line")")
+      fi
+    done
+    echo "$name threads=$t rounds=$ROUNDS fraction_of_stream_median=$(median "${fractions[@]}") fraction_of_stream_rounds=$(IFS=,; echo "${fractions[*]}")"
   done
 done
 
+# YADE: ROUNDS repetitions in one YADE process (its packing takes a while), each followed by
+# rcdem's cube at the same thread count (bench/yade_cpm.py, YADE_BETWEEN): one ratio per round.
 N=${YADE_N:-$cube_bodies}
-echo "yade: $YADE -n -x -j $THREADS bench/yade_cpm.py $N ${YADE_STEPS:-$K} $REPEATS"
-if ! "$YADE" -n -x -j "$THREADS" bench/yade_cpm.py "$N" "${YADE_STEPS:-$K}" "$REPEATS" > "$tmp/yade.log" 2>&1; then
+between="OMP_NUM_THREADS=$THREADS $STEP_BENCH examples/uniaxial/compression.toml $K 50 $REPEATS | grep -v '^#'"
+echo "yade: $YADE -n -x -j $THREADS bench/yade_cpm.py $N ${YADE_STEPS:-$K} $ROUNDS, each round followed by: $between"
+if ! YADE_BETWEEN="$between" "$YADE" -n -x -j "$THREADS" bench/yade_cpm.py "$N" "${YADE_STEPS:-$K}" "$ROUNDS" > "$tmp/yade.log" 2>&1; then
   cat "$tmp/yade.log" >&2
   echo "yade failed" >&2
   exit 1
 fi
 grep '^# yade_cpm' "$tmp/yade.log" || true
+ratios=()
+ybest=0
+rbest=0
+ycs=""
+round=0
+while IFS= read -r l; do
+  case "$l" in
+    yade_round=*)
+      ycs=$(kv yade_contact_steps_per_s "$l")
+      round=$(kv yade_round "$l")
+      ybest=$(awk -v a="$ybest" -v b="$ycs" 'BEGIN { print (b > a) ? b : a }')
+      ;;
+    scenario=*)
+      [[ -n "$ycs" ]] || continue
+      rcs=$(kv contact_steps_per_s "$l")
+      rbest=$(awk -v a="$rbest" -v b="$rcs" 'BEGIN { print (b > a) ? b : a }')
+      ratio=$(calc "$rcs / $ycs")
+      ratios+=("$ratio")
+      echo "round=$round threads=$THREADS yade_contact_steps_per_s=$ycs rcdem_cube_contact_steps_per_s=$rcs steps_per_s=$(kv steps_per_s "$l") ratio=$ratio"
+      ycs=""
+      ;;
+  esac
+done < "$tmp/yade.log"
 yline=$(grep '^yade_threads=' "$tmp/yade.log" | tail -n1)
-[[ -n "$yline" ]] || { cat "$tmp/yade.log" >&2; echo "no result line from yade" >&2; exit 1; }
+[[ -n "$yline" && ${#ratios[@]} -gt 0 ]] || { cat "$tmp/yade.log" >&2; echo "no result line from yade" >&2; exit 1; }
 echo "$yline"
-ycs=$(kv yade_contact_steps_per_s "$yline")
-rcs=${rcdem_cs[cube.$THREADS]}
-echo "# rcdem cube ($THREADS threads): $rcs contact-steps/s, $cube_points_per_contact local points per" \
-     "contact; YADE: $ycs contact-steps/s, one force point per bond"
-echo "ratio_contact_steps_vs_yade=$(calc "$rcs / $ycs")"
+echo "# rcdem cube ($THREADS threads): best $rbest contact-steps/s, $cube_points_per_contact local points per" \
+     "contact; YADE: best $ybest contact-steps/s, one force point per bond; best against best $(calc "$rbest / $ybest");" \
+     "ratios of the $ROUNDS paired rounds: $(IFS=,; echo "${ratios[*]}")"
+echo "ratio_contact_steps_vs_yade=$(median "${ratios[@]}")"

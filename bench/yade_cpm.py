@@ -23,11 +23,17 @@
 # Timing: 1 step (bonds) + 20 warm-up steps, then O.run(STEPS, True) under time.time(), REPEATS
 # times back to back; the fastest repetition is reported (as rcdem_step_bench does with its own
 # REPEATS: on a shared machine the slower ones carry the neighbours' load).
+# Paired rounds: with YADE_BETWEEN set (a shell command), each repetition is a round: YADE's timing
+# (printed as "yade_round=<k> yade_contact_steps_per_s=<x>"), then the command, whose output is
+# printed as it comes. bench/throughput.sh puts rcdem's cube there, so that each ratio compares two
+# timings taken within seconds of each other: this machine's speed drifts by up to 3x over minutes.
 # Prints: yade_threads=<t> yade_spheres=<n> yade_contacts=<real interactions at the start of the
 # timed steps> yade_steps=<k> yade_seconds=<s> yade_contact_steps_per_s=<x>, the rate on the mean of
 # the interaction counts before and after the timed steps (they barely change in compression), and
 # a comment line before it with the packing details.
 import math
+import os
+import subprocess
 import sys
 import time
 
@@ -104,6 +110,16 @@ for rep in range(REPEATS):
     rate = 0.5 * (c0 + c1) * STEPS / seconds
     if best is None or rate > best[0]:
         best = (rate, seconds, c0, c1)
+    between = os.environ.get("YADE_BETWEEN")
+    if between:
+        print("yade_round=%d yade_contact_steps_per_s=%.4g yade_seconds=%.4f" % (rep + 1, rate, seconds))
+        sys.stdout.flush()
+        done = subprocess.run(["bash", "-c", between], stdout=subprocess.PIPE, text=True)
+        sys.stdout.write(done.stdout)
+        if done.returncode != 0:
+            print("YADE_BETWEEN failed with exit code %d" % done.returncode)
+            sys.exit(1)
+        sys.stdout.flush()
 rate, seconds, c0, c1 = best
 spheres = len(O.bodies)
 print("# yade_cpm: radius=%.4g m, packing %.1f s, bonds/sphere %.2f, contacts end %d, dt %.4g s, "

@@ -207,6 +207,11 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
   cond->any_condensed = true;  // cleared by the catch-up; harmless if none was
   const CondensedInputs ci{cond->sums, in.net.particle_a.data(), in.net.particle_b.data(), in.pose,
                            in.net.contact_count()};
+  const Index blocks = (in.net.contact_count() + CondensedBlock::kSize - 1) / CondensedBlock::kSize;
+  if (static_cast<Index>(cs.block_damage.size()) != blocks) {  // the first step only
+    cs.block_damage.assign(static_cast<std::size_t>(blocks), 0.0);
+    cs.block_friction.assign(static_cast<std::size_t>(blocks), 0.0);
+  }
   parallel_for_blocks(in.net.contact_count(), CondensedBlock::kSize, [&](Index begin, Index end) {
     CondensedBlock block;
     evaluate_condensed_block(ci, begin, end - begin, cs, block);
@@ -218,6 +223,13 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
       if (was_condensed) evaluate_contact<Law, true>(law, *previous, cs, cond, c);
       evaluate_contact(law, in, cs, cond, c);
     }
+    Real damage = 0.0, friction = 0.0;
+    for (Index c = begin; c < end; ++c) {
+      damage += cs.dissipated_damage[c];
+      friction += cs.dissipated_friction[c];
+    }
+    cs.block_damage[begin / CondensedBlock::kSize] = damage;
+    cs.block_friction[begin / CondensedBlock::kSize] = friction;
   });
 }
 

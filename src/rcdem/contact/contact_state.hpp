@@ -27,6 +27,11 @@ struct ContactState {
   std::vector<Vec3> torque_a;             // about A's centre
   std::vector<Real> dissipated_damage;    // during this step [J]
   std::vector<Real> dissipated_friction;  // during this step [J]
+  // The same two summed per block of the blocked loop (evaluate_contacts with condensation), in
+  // contact order, while the block is in cache: the step's ledger then adds a few hundred numbers
+  // in a fixed order instead of passing over every contact on one thread (a twentieth of an
+  // elastic step at 2 threads).
+  std::vector<Real> block_damage, block_friction;
 
   // Normals at t = 0: centre to centre, or (with anchors) perpendicular to the bar's axis.
   // A point's shear force and accumulated shear displacement in the world frame.

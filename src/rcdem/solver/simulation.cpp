@@ -98,6 +98,8 @@ Simulation::Simulation(const Scenario& sc, Specimen specimen)
          bodies_.inertia[spheres_].x() == bodies_.inertia[spheres_].y() &&
          bodies_.inertia[spheres_].y() == bodies_.inertia[spheres_].z())
     ++spheres_;
+  sphere_block_sums_.assign(static_cast<std::size_t>((spheres_ + kSphereBlock - 1) / kSphereBlock),
+                            SphereBlockSums{});
   rotation_.assign(n, Eigen::Matrix3d::Identity());
   rotation_prev_ = rotation_;
   position_eval_ = bodies_.position;
@@ -260,9 +262,16 @@ void Simulation::step() {
 
   // Energy ledger: what this step dissipated (sums in a fixed order: deterministic).
   Real damage = 0.0, friction = 0.0;
-  for (Index c = 0; c < net.contact_count(); ++c) {
-    damage += contacts_.dissipated_damage[c];
-    friction += contacts_.dissipated_friction[c];
+  if (!contacts_.block_damage.empty()) {  // the blocked loop summed its blocks
+    for (std::size_t k = 0; k < contacts_.block_damage.size(); ++k) {
+      damage += contacts_.block_damage[k];
+      friction += contacts_.block_friction[k];
+    }
+  } else {
+    for (Index c = 0; c < net.contact_count(); ++c) {
+      damage += contacts_.dissipated_damage[c];
+      friction += contacts_.dissipated_friction[c];
+    }
   }
   for (Index j = 0; j < plate_contacts_.size(); ++j)
     friction += plate_contacts_.dissipated_friction[j];
@@ -275,7 +284,11 @@ void Simulation::step() {
   for (std::size_t j = 0; j < nodes_.size(); ++j) plastic += node_forces_[j].dissipated;
   energy_.plastic += plastic;
   Real damping_work = 0.0, kinetic = 0.0;
-  for (std::size_t i = 0; i < body_kinetic_.size(); ++i) {
+  for (const SphereBlockSums& s : sphere_block_sums_) {
+    damping_work += s.damping_work;
+    kinetic += s.kinetic;
+  }
+  for (std::size_t i = static_cast<std::size_t>(spheres_); i < body_kinetic_.size(); ++i) {
     damping_work += body_damping_work_[i];
     kinetic += body_kinetic_[i];
   }
@@ -361,8 +374,17 @@ void Simulation::integrate() {
   Bodies& b = bodies_;
   // The concrete particles in SIMD lanes (sphere_update.hpp), then the cylinders.
   const SphereStepOutputs out{body_damping_work_.data(), body_kinetic_.data(), body_jumped_.data()};
-  parallel_for_blocks(spheres_, 128, [&](Index begin, Index end) {
+  // Each block also sums its bodies' energies and flags (in body order) while they are in cache:
+  // the step's ledger adds the blocks in order instead of passing over every body on one thread.
+  parallel_for_blocks(spheres_, kSphereBlock, [&](Index begin, Index end) {
     advance_spheres(b, begin, end, dt, alpha, out);
+    SphereBlockSums s;
+    for (Index i = begin; i < end; ++i) {
+      s.damping_work += body_damping_work_[i];
+      s.kinetic += body_kinetic_[i];
+      s.jumped |= body_jumped_[i];
+    }
+    sphere_block_sums_[static_cast<std::size_t>(begin / kSphereBlock)] = s;
   });
   for (Index i = spheres_; i < b.size(); ++i) {
     // Local non-viscous damping (Cundall): each component of the force is reduced by alpha |F|
@@ -412,6 +434,10 @@ void Simulation::integrate() {
     body_jumped_[i] = !(dx.squaredNorm() < dx_limit * dx_limit) ||
                       !(w_new.squaredNorm() * dt * dt < kStableTurnLimit * kStableTurnLimit);
   }
+  bool jumped = false;
+  for (const SphereBlockSums& s : sphere_block_sums_) jumped |= s.jumped != 0;
+  for (Index i = spheres_; i < b.size(); ++i) jumped |= body_jumped_[i] != 0;
+  if (!jumped) return;
   for (Index i = 0; i < b.size(); ++i)
     if (body_jumped_[i])
       fail(

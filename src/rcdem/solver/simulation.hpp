@@ -154,6 +154,13 @@ class Simulation {
   std::vector<Real> plate_force_prev_, plate_displacement_prev_;
   std::vector<Real> body_damping_work_, body_kinetic_;
   std::vector<std::int64_t> body_jumped_;
+  // Per block of kSphereBlock concrete particles (integrate()): their sums of the three above.
+  static constexpr Index kSphereBlock = 128;
+  struct SphereBlockSums {
+    Real damping_work = 0.0, kinetic = 0.0;
+    std::int64_t jumped = 0;
+  };
+  std::vector<SphereBlockSums> sphere_block_sums_;
   Index spheres_ = 0;  // bodies [0, spheres_) take advance_spheres()
   // Every body's orientation as a matrix, formed at the start of each step for the contact loops
   // (derived from the orientations: not part of a checkpoint).
