@@ -38,4 +38,15 @@ void parallel_for_blocks(std::int64_t n, std::int64_t block, Body&& body) {
   }
 }
 
+// n tasks, each known to be worth a thread (a block of the small networks' contacts), handed out
+// one at a time: in parallel from two tasks on, where parallel_for's threshold counts items. Each
+// task writes only its own outputs, so which thread runs it changes nothing.
+template <typename Body>
+void parallel_tasks(std::int64_t n, Body&& body) {
+#if defined(_OPENMP)
+#pragma omp parallel for schedule(dynamic, 1) if (n > 1)
+#endif
+  for (std::int64_t k = 0; k < n; ++k) body(k);
+}
+
 }  // namespace rcdem

@@ -103,70 +103,77 @@ PlateContacts make_plate_contacts(const std::vector<Plate>& plates, const Bounda
   return pc;
 }
 
+void evaluate_plate_contact(const std::vector<Plate>& plates, PlateContacts& pc, const Bodies& b,
+                            Index k) {
+  const Plate& plate = plates[static_cast<std::size_t>(pc.plate[k])];
+  const Index i = pc.particle[k];
+  const Vec3 n = plate.normal;
+  // The particle's material point that lay on the face at t = 0, against the plate's.
+  const Vec3 pp = b.position[i] + b.orientation[i] * (pc.point0[k] - b.position0[i]);
+  Vec3 plate_point = pc.point0[k];
+  plate_point[plate.axis] += plate.displacement;
+  const Vec3 u = pp - plate_point;
+  const Real un = u.dot(n);  // opening positive: the particle moving off the plate
+  const Vec3 us = u - un * n;
+  const auto [ua, va] = plane_axes(plate.axis);
+  const bool on_plate = pp[ua] >= plate.u_min && pp[ua] <= plate.u_max && pp[va] >= plate.v_min &&
+                        pp[va] <= plate.v_max;
+  LocalPointState& s = pc.state[k];
+  const LocalPointConstants& c = pc.constants[k];
+  const bool was_active = pc.active[k] != 0;
+  // An unglued contact that reaches the rectangle from beside it, already below the plate's
+  // plane (its last opening, kept while it was inactive, was negative too), measures its
+  // opening from where it entered; one that meets the plate face-on, from the plane.
+  if (!plate.glued && !was_active && on_plate)
+    pc.entry_opening[k] = (s.un < 0.0 && un < 0.0) ? un : 0.0;
+  const Real opening = plate.glued ? un : un - pc.entry_opening[k];
+  Real friction_loss = 0.0;
+  if (!on_plate || (!plate.glued && opening > 0.0)) {
+    // Separated (or off the rectangle): the contact forgets its history, and the energy its
+    // springs held leaves the model; the ledger books it as lost, not as vanished.
+    if (was_active) friction_loss = 0.5 * s.fn * s.fn / c.kn + 0.5 * s.fs.squaredNorm() / c.ks;
+    s = LocalPointState{};
+    s.un = un;
+    s.us = us;
+    pc.active[k] = 0;
+    pc.entry_opening[k] = 0.0;
+  } else if (plate.glued) {
+    s.fn = c.kn * un;
+    s.fs = -c.ks * us;
+    s.un = un;
+    s.us = us;
+    pc.active[k] = 1;
+  } else {
+    // Unilateral, Coulomb friction: the shear spring is incremental so that it can slide.
+    const Vec3 dus = was_active ? Vec3(us - s.us) : Vec3::Zero();
+    const Vec3 fs_old = s.fs;
+    s.fn = c.kn * opening;  // compression: negative
+    Vec3 fs = s.fs - c.ks * dus;
+    const Real cap = plate.friction * (-s.fn);
+    const Real len = fs.norm();
+    if (len > cap) fs *= (len > 0.0 ? cap / len : 0.0);
+    // Work of the slip on the spring minus its change of energy: the friction loss.
+    const Real work = -0.5 * (fs_old + fs).dot(dus);
+    friction_loss = work - (fs.squaredNorm() - fs_old.squaredNorm()) / (2.0 * c.ks);
+    s.fs = fs;
+    s.un = un;
+    s.us = us;
+    pc.active[k] = 1;
+  }
+  const Vec3 f = -s.fn * n + s.fs;
+  pc.force[k] = f;
+  pc.torque[k] = (pp - b.position[i]).cross(f);
+  pc.strain_energy[k] =
+      pc.active[k] ? 0.5 * s.fn * s.fn / c.kn + 0.5 * s.fs.squaredNorm() / c.ks : 0.0;
+  pc.dissipated_friction[k] = friction_loss;
+}
+
 void evaluate_plate_contacts(std::vector<Plate>& plates, PlateContacts& pc, const Bodies& b) {
-  parallel_for(pc.size(), [&](Index k) {
-    const Plate& plate = plates[static_cast<std::size_t>(pc.plate[k])];
-    const Index i = pc.particle[k];
-    const Vec3 n = plate.normal;
-    // The particle's material point that lay on the face at t = 0, against the plate's.
-    const Vec3 pp = b.position[i] + b.orientation[i] * (pc.point0[k] - b.position0[i]);
-    Vec3 plate_point = pc.point0[k];
-    plate_point[plate.axis] += plate.displacement;
-    const Vec3 u = pp - plate_point;
-    const Real un = u.dot(n);  // opening positive: the particle moving off the plate
-    const Vec3 us = u - un * n;
-    const auto [ua, va] = plane_axes(plate.axis);
-    const bool on_plate = pp[ua] >= plate.u_min && pp[ua] <= plate.u_max && pp[va] >= plate.v_min &&
-                          pp[va] <= plate.v_max;
-    LocalPointState& s = pc.state[k];
-    const LocalPointConstants& c = pc.constants[k];
-    const bool was_active = pc.active[k] != 0;
-    // An unglued contact that reaches the rectangle from beside it, already below the plate's
-    // plane (its last opening, kept while it was inactive, was negative too), measures its
-    // opening from where it entered; one that meets the plate face-on, from the plane.
-    if (!plate.glued && !was_active && on_plate)
-      pc.entry_opening[k] = (s.un < 0.0 && un < 0.0) ? un : 0.0;
-    const Real opening = plate.glued ? un : un - pc.entry_opening[k];
-    Real friction_loss = 0.0;
-    if (!on_plate || (!plate.glued && opening > 0.0)) {
-      // Separated (or off the rectangle): the contact forgets its history, and the energy its
-      // springs held leaves the model; the ledger books it as lost, not as vanished.
-      if (was_active) friction_loss = 0.5 * s.fn * s.fn / c.kn + 0.5 * s.fs.squaredNorm() / c.ks;
-      s = LocalPointState{};
-      s.un = un;
-      s.us = us;
-      pc.active[k] = 0;
-      pc.entry_opening[k] = 0.0;
-    } else if (plate.glued) {
-      s.fn = c.kn * un;
-      s.fs = -c.ks * us;
-      s.un = un;
-      s.us = us;
-      pc.active[k] = 1;
-    } else {
-      // Unilateral, Coulomb friction: the shear spring is incremental so that it can slide.
-      const Vec3 dus = was_active ? Vec3(us - s.us) : Vec3::Zero();
-      const Vec3 fs_old = s.fs;
-      s.fn = c.kn * opening;  // compression: negative
-      Vec3 fs = s.fs - c.ks * dus;
-      const Real cap = plate.friction * (-s.fn);
-      const Real len = fs.norm();
-      if (len > cap) fs *= (len > 0.0 ? cap / len : 0.0);
-      // Work of the slip on the spring minus its change of energy: the friction loss.
-      const Real work = -0.5 * (fs_old + fs).dot(dus);
-      friction_loss = work - (fs.squaredNorm() - fs_old.squaredNorm()) / (2.0 * c.ks);
-      s.fs = fs;
-      s.un = un;
-      s.us = us;
-      pc.active[k] = 1;
-    }
-    const Vec3 f = -s.fn * n + s.fs;
-    pc.force[k] = f;
-    pc.torque[k] = (pp - b.position[i]).cross(f);
-    pc.strain_energy[k] =
-        pc.active[k] ? 0.5 * s.fn * s.fn / c.kn + 0.5 * s.fs.squaredNorm() / c.ks : 0.0;
-    pc.dissipated_friction[k] = friction_loss;
-  });
+  parallel_for(pc.size(), [&](Index k) { evaluate_plate_contact(plates, pc, b, k); });
+  sum_plate_reactions(plates, pc);
+}
+
+void sum_plate_reactions(std::vector<Plate>& plates, const PlateContacts& pc) {
   // The reactions, summed in a fixed order.
   for (auto& p : plates) {
     p.force = Vec3::Zero();

@@ -70,5 +70,10 @@ PlateContacts make_plate_contacts(const std::vector<Plate>& plates, const Bounda
 
 // Contact forces between plates and particles (SPEC 6), and each plate's reaction.
 void evaluate_plate_contacts(std::vector<Plate>& plates, PlateContacts& pc, const Bodies& bodies);
+// The same in two parts, for a caller that spreads the contacts over its own tasks: contact k
+// (writes only its own entries), then the plates' reactions and active counts, in a fixed order.
+void evaluate_plate_contact(const std::vector<Plate>& plates, PlateContacts& pc,
+                            const Bodies& bodies, Index k);
+void sum_plate_reactions(std::vector<Plate>& plates, const PlateContacts& pc);
 
 }  // namespace rcdem

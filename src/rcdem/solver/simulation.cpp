@@ -1,5 +1,6 @@
 #include "rcdem/solver/simulation.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -88,6 +89,15 @@ Simulation::Simulation(const Scenario& sc, Specimen specimen)
   plate_contacts_ = make_plate_contacts(plates_, specimen_.boundary, bodies_, sc.contact);
   plate_force_prev_.assign(plates_.size(), 0.0);
   plate_displacement_prev_.assign(plates_.size(), 0.0);
+  // The small networks' tasks: a few dozen items each (about 10-30 us of work at most).
+  const auto add_tasks = [this](SmallTask::Kind kind, std::size_t bar, Index count, Index size) {
+    for (Index begin = 0; begin < count; begin += size)
+      small_tasks_.push_back({kind, bar, begin, std::min(count, begin + size)});
+  };
+  for (std::size_t k = 0; k < specimen_.interfaces.size(); ++k)
+    add_tasks(SmallTask::kInterface, k, specimen_.interfaces[k].net.contact_count(), 64);
+  add_tasks(SmallTask::kPlates, 0, plate_contacts_.size(), 256);
+  add_tasks(SmallTask::kNodes, 0, static_cast<Index>(nodes_.size()), 64);
   const auto n = static_cast<std::size_t>(bodies_.size());
   body_damping_work_.assign(n, 0.0);
   body_kinetic_.assign(n, 0.0);
@@ -228,7 +238,6 @@ void Simulation::step() {
     position_eval_[i] = bodies_.position[i];
     pose_.set(i, bodies_.position[i], bodies_.orientation[i]);
   });
-  const Eigen::Matrix3d* rot = rotation_.data();
   // Evaluated from the copy, so that what a later catch-up reads is what this evaluation used.
   ContactInputs concrete = concrete_inputs(position_eval_, rotation_);
   concrete.pose = pose_.ptr();
@@ -238,24 +247,10 @@ void Simulation::step() {
                       condensation_.sums.empty() ? nullptr : &condensation_, &previous);
   else
     evaluate_contacts(elastic_, concrete, contacts_);
-  // Steel-concrete interfaces, bar by bar with its law; interaction nodes.
-  for (std::size_t k = 0; k < interface_states_.size(); ++k) {
-    const InterfaceContacts& ic = specimen_.interfaces[k];
-    if (interface_law_[k] == InterfaceLaw::EL)
-      evaluate_contacts(elastic_, ic.net, bodies_, interface_states_[k], dt_, ic.anchor0.data(),
-                        rot);
-    else
-      evaluate_contacts(interface_bl_[k], ic.net, bodies_, interface_states_[k], dt_,
-                        ic.anchor0.data(), rot);
-  }
-  parallel_for(static_cast<Index>(nodes_.size()), [&](Index j) {
-    const NodeRef& r = node_refs_[j];
-    node_forces_[j] = evaluate_node(nodes_[j], node_states_[j], bodies_.position[r.body_a],
-                                    bodies_.orientation[r.body_a], bodies_.position[r.body_b],
-                                    bodies_.orientation[r.body_b]);
-  });
-  // 2. Plates.
-  evaluate_plate_contacts(plates_, plate_contacts_, bodies_);
+  // Steel-concrete interfaces (each bar with its law), interaction nodes, 2. plates.
+  parallel_tasks(static_cast<Index>(small_tasks_.size()),
+                 [&](Index j) { run_small_task(small_tasks_[static_cast<std::size_t>(j)]); });
+  sum_plate_reactions(plates_, plate_contacts_);
   // 3. Gather, 4. integrate.
   gather_forces();
   integrate();
@@ -323,6 +318,43 @@ void Simulation::step() {
   }
   time_ += dt_;
   ++steps_;
+}
+
+void Simulation::run_small_task(const SmallTask& task) {
+  switch (task.kind) {
+    case SmallTask::kInterface: {
+      const InterfaceContacts& ic = specimen_.interfaces[task.bar];
+      const ContactInputs in{ic.net,
+                             bodies_.position.data(),
+                             bodies_.position0.data(),
+                             bodies_.angular_velocity.data(),
+                             bodies_.orientation0.data(),
+                             rotation_.data(),
+                             ic.anchor0.data(),
+                             dt_};
+      ContactState& st = interface_states_[task.bar];
+      for (Index c = task.begin; c < task.end; ++c) {
+        if (interface_law_[task.bar] == InterfaceLaw::EL)
+          evaluate_contact(elastic_, in, st, nullptr, c);
+        else
+          evaluate_contact(interface_bl_[task.bar], in, st, nullptr, c);
+      }
+      break;
+    }
+    case SmallTask::kPlates:
+      for (Index k = task.begin; k < task.end; ++k)
+        evaluate_plate_contact(plates_, plate_contacts_, bodies_, k);
+      break;
+    case SmallTask::kNodes:
+      for (Index j = task.begin; j < task.end; ++j) {
+        const NodeRef& r = node_refs_[static_cast<std::size_t>(j)];
+        node_forces_[static_cast<std::size_t>(j)] = evaluate_node(
+            nodes_[static_cast<std::size_t>(j)], node_states_[static_cast<std::size_t>(j)],
+            bodies_.position[r.body_a], bodies_.orientation[r.body_a], bodies_.position[r.body_b],
+            bodies_.orientation[r.body_b]);
+      }
+      break;
+  }
 }
 
 void Simulation::gather_forces() {
