@@ -215,6 +215,7 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
   parallel_for_blocks(in.net.contact_count(), CondensedBlock::kSize, [&](Index begin, Index end) {
     CondensedBlock block;
     evaluate_condensed_block(ci, begin, end - begin, cs, block);
+    bool visited = false;
     for (Index c = begin; c < end; ++c) {
       const bool was_condensed = cond->condensed[c];
       const bool keep = cond->intact[c] && block.below_limits[c - begin];
@@ -222,9 +223,11 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
       if (keep) continue;
       if (was_condensed) evaluate_contact<Law, true>(law, *previous, cs, cond, c);
       evaluate_contact(law, in, cs, cond, c);
+      visited = true;
     }
+    // A block evaluated from its sums alone dissipated exactly zero (the kernel stores zeros).
     Real damage = 0.0, friction = 0.0;
-    for (Index c = begin; c < end; ++c) {
+    for (Index c = begin; visited && c < end; ++c) {
       damage += cs.dissipated_damage[c];
       friction += cs.dissipated_friction[c];
     }
