@@ -15,7 +15,9 @@
 #     3. YADE CpmMat (bench/yade_cpm.py) on as many spheres as the cube has particles, STEPS steps,
 #        ROUNDS times in one YADE process, each followed by rcdem's cube (best of REPEATS) at
 #        THREADS threads: one ratio per round, and the best-against-best ratio in a comment;
-#     4. last line: ratio_contact_steps_vs_yade=<the median of the rounds' ratios of rcdem's cube
+#     4. a summary, one comment line per target of the issue (the step loop at >= 50% of STREAM
+#        on each specimen at THREADS threads, >= 10x YADE), with the median and whether it is met;
+#     5. last line: ratio_contact_steps_vs_yade=<the median of the rounds' ratios of rcdem's cube
 #        contact-steps/s to YADE's>, both at THREADS threads.
 #     Why rounds: this machine's speed and bandwidth drift by 2-3x over minutes (bench/RESULTS.md,
 #     session 11), so only figures taken seconds apart can be compared.
@@ -89,6 +91,10 @@ fi
 # The median of numbers (one per argument).
 median() { printf '%s\n' "$@" | sort -g | awk '{ v[NR] = $1 } END { m = (NR % 2) ? v[(NR + 1) / 2] : 0.5 * (v[NR / 2] + v[NR / 2 + 1]); printf "%.4g", m }'; }
 
+# One line of the closing summary: the issue's target, the median measured, met or not.
+verdict() { awk -v what="$1" -v x="$2" -v goal="$3" 'BEGIN { printf "# target %s: median %s, %s\n", what, x, (x >= goal) ? "met" : "NOT met" }'; }
+summary=()
+
 # rcdem: ROUNDS rounds per scenario and thread count, each a STREAM triad at that thread count
 # and right after it the step bench (best of REPEATS): the fraction of a round compares two figures
 # taken seconds apart, and the median over the rounds is the result (this machine's bandwidth
@@ -123,7 +129,9 @@ for entry in "${scenarios[@]}"; do
         cube_points_per_contact=$(calc "$(kv local_points "$line") / $(kv contacts "$line")")
       fi
     done
-    echo "$name threads=$t rounds=$ROUNDS fraction_of_stream_median=$(median "${fractions[@]}") fraction_of_stream_rounds=$(IFS=,; echo "${fractions[*]}")"
+    fmed=$(median "${fractions[@]}")
+    echo "$name threads=$t rounds=$ROUNDS fraction_of_stream_median=$fmed fraction_of_stream_rounds=$(IFS=,; echo "${fractions[*]}")"
+    [[ $t == "$THREADS" ]] && summary+=("$(verdict "step loop >= 50% of STREAM, $name, $t threads" "$fmed" 0.5)")
   done
 done
 
@@ -167,4 +175,7 @@ echo "$yline"
 echo "# rcdem cube ($THREADS threads): best $rbest contact-steps/s, $cube_points_per_contact local points per" \
      "contact; YADE: best $ybest contact-steps/s, one force point per bond; best against best $(calc "$rbest / $ybest");" \
      "ratios of the $ROUNDS paired rounds: $(IFS=,; echo "${ratios[*]}")"
-echo "ratio_contact_steps_vs_yade=$(median "${ratios[@]}")"
+ratio=$(median "${ratios[@]}")
+summary+=("$(verdict "contact-steps/s >= 10x YADE CpmMat's, $THREADS threads" "$ratio" 10)")
+printf '%s\n' "${summary[@]}"
+echo "ratio_contact_steps_vs_yade=$ratio"
