@@ -104,7 +104,6 @@ scenarios=("cube=examples/uniaxial/compression.toml")
 [[ "${SKIP_BEAM:-0}" == 1 ]] || scenarios+=("AN4_NL-B=examples/three_point_bending/study/AN4_NL-B.toml")
 cube_bodies=""
 cube_points_per_contact=""
-cube_best=0
 for entry in "${scenarios[@]}"; do
   name=${entry%%=*}
   file=${entry#*=}

@@ -236,6 +236,19 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
   });
 }
 
+// A network's inputs from the bodies' current state (`rotation`: their orientations as matrices).
+inline ContactInputs body_inputs(const ContactNetwork& net, const Bodies& bodies,
+                                 const Eigen::Matrix3d* rotation, const Vec3* anchor0, Real dt) {
+  return {net,
+          bodies.position.data(),
+          bodies.position0.data(),
+          bodies.angular_velocity.data(),
+          bodies.orientation0.data(),
+          rotation,
+          anchor0,
+          dt};
+}
+
 // The same from the bodies' state. `rotation`: every body's orientation as a matrix (Simulation
 // forms them once per step: a body has about 13 contact ends, and two quaternion-to-matrix
 // conversions were a tenth of a contact's cost); formed here when not given (tests).
@@ -249,15 +262,7 @@ void evaluate_contacts(const Law& law, const ContactNetwork& net, const Bodies& 
     for (const Quat& q : bodies.orientation) formed.push_back(q.toRotationMatrix());
     rotation = formed.data();
   }
-  const ContactInputs in{net,
-                         bodies.position.data(),
-                         bodies.position0.data(),
-                         bodies.angular_velocity.data(),
-                         bodies.orientation0.data(),
-                         rotation,
-                         anchor0,
-                         dt};
-  evaluate_contacts(law, in, cs);
+  evaluate_contacts(law, body_inputs(net, bodies, rotation, anchor0, dt), cs);
 }
 
 // Brings the histories of the contacts condensed at the last evaluation up to date, from that

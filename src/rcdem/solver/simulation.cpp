@@ -324,21 +324,16 @@ void Simulation::run_small_task(const SmallTask& task) {
   switch (task.kind) {
     case SmallTask::kInterface: {
       const InterfaceContacts& ic = specimen_.interfaces[task.bar];
-      const ContactInputs in{ic.net,
-                             bodies_.position.data(),
-                             bodies_.position0.data(),
-                             bodies_.angular_velocity.data(),
-                             bodies_.orientation0.data(),
-                             rotation_.data(),
-                             ic.anchor0.data(),
-                             dt_};
+      const ContactInputs in =
+          body_inputs(ic.net, bodies_, rotation_.data(), ic.anchor0.data(), dt_);
       ContactState& st = interface_states_[task.bar];
-      for (Index c = task.begin; c < task.end; ++c) {
-        if (interface_law_[task.bar] == InterfaceLaw::EL)
-          evaluate_contact(elastic_, in, st, nullptr, c);
-        else
-          evaluate_contact(interface_bl_[task.bar], in, st, nullptr, c);
-      }
+      const auto run = [&](const auto& law) {
+        for (Index c = task.begin; c < task.end; ++c) evaluate_contact(law, in, st, nullptr, c);
+      };
+      if (interface_law_[task.bar] == InterfaceLaw::EL)
+        run(elastic_);
+      else
+        run(interface_bl_[task.bar]);
       break;
     }
     case SmallTask::kPlates:
