@@ -484,18 +484,29 @@ Real points_strain_energy(const ContactNetwork& net, const ContactState& cs) {
 }  // namespace
 
 Real Simulation::concrete_strain_energy() const {
+  // By fixed blocks of contacts on every thread, then the blocks' sums in order: the same value
+  // at any thread count. A history row asks for it every few dozen steps, and serial it took 7 ms
+  // on the cracked AN4 beam, most of a 2-thread step (bench/RESULTS.md, session 13).
   const ContactNetwork& net = specimen_.contacts;
-  if (!condensation_.any_condensed) return points_strain_energy(net, contacts_);
-  // Condensed contacts from their sums at the last evaluation's kinematics (their histories are
-  // stale), the others from their points.
+  const bool condensed = condensation_.any_condensed;
+  constexpr Index kBlock = 1024;
+  const Index n = net.contact_count();
+  strain_energy_blocks_.assign(static_cast<std::size_t>((n + kBlock - 1) / kBlock), 0.0);
+  parallel_for_blocks(n, kBlock, [&](Index begin, Index end) {
+    // Condensed contacts from their sums at the last evaluation's kinematics (their histories are
+    // stale), the others from their points.
+    Real e = 0.0;
+    for (Index c = begin; c < end; ++c) {
+      const Index a = net.particle_a[c], b = net.particle_b[c];
+      e += condensed && condensation_.condensed[static_cast<std::size_t>(c)]
+               ? condensed_strain_energy(condensation_.sums, c, position_eval_[a],
+                                         position_eval_[b], rotation_[a], rotation_[b])
+               : contacts_.strain_energy(net, c);
+    }
+    strain_energy_blocks_[static_cast<std::size_t>(begin / kBlock)] = e;
+  });
   Real e = 0.0;
-  for (Index c = 0; c < net.contact_count(); ++c) {
-    const Index a = net.particle_a[c], b = net.particle_b[c];
-    e += condensation_.condensed[static_cast<std::size_t>(c)]
-             ? condensed_strain_energy(condensation_.sums, c, position_eval_[a], position_eval_[b],
-                                       rotation_[a], rotation_[b])
-             : contacts_.strain_energy(net, c);
-  }
+  for (const Real block : strain_energy_blocks_) e += block;
   return e;
 }
 

@@ -177,6 +177,7 @@ class Simulation {
   // (derived from the orientations: not part of a checkpoint).
   std::vector<Eigen::Matrix3d> rotation_, rotation_prev_;
   BodyPoses pose_;  // the same with the centres, for the condensed contacts' kernel
+  mutable std::vector<Real> strain_energy_blocks_;  // concrete_strain_energy()'s per-block sums
 };
 
 }  // namespace rcdem
