@@ -29,7 +29,8 @@ struct PointSums {
 // a contact's points for the EL law only; BL's branches keep it scalar, and that is the faster
 // form: a branch-free elastic pass in SIMD lanes (4 or 8) with a scalar pass for the points that
 // leave the elastic range was 7-9% slower (bench/RESULTS.md, session 5), as was a full 8-lane
-// pass with idle lanes masked for EL (6%).
+// pass with idle lanes masked for EL (6%), and in session 13 the law written with selects in one
+// 8- or 4-lane vector per contact (13-17%): every lane then pays both divisions and both roots.
 template <typename Law>
 struct PointUpdate {
   const Law& law;
@@ -100,6 +101,103 @@ struct ContactInputs {
   return d / std::sqrt(d.squaredNorm());  // the same rounding as normalized()
 }
 
+// A contact's frame and the kinematics its points read: evaluate_contact's first half. The
+// blocked loop forms them for all the contacts of a block that visit their points before it visits
+// any point, so that the out-of-order core overlaps the contacts' chains of dependent operations
+// (normal, frame turn, products) instead of waiting on each between two contacts' ~100
+// instructions per point: +3.3% steps/s on the cracked AN4 beam, 9 rounds of 10 (bench/RESULTS.md,
+// session 13).
+struct ContactFrame {
+  Vec3 n, t1, t2;
+  Vec3 xa0;              // A's centre at t = 0
+  Vec3 dx;               // x_B - x_A
+  Vec3 disp0;            // E^T u0
+  Eigen::Matrix3d disp;  // E^T (R_B - R_A)
+  Eigen::Matrix3d arm;   // E^T (R_A + R_B) / 2
+  bool intact;           // every point intact: any frame will do
+};
+
+[[gnu::always_inline]] inline void contact_frame(const ContactInputs& in, ContactState& cs,
+                                                 const ElasticCondensation* cond, Index c,
+                                                 ContactFrame& f) {
+  const ContactNetwork& net = in.net;
+  const Index a = net.particle_a[c];
+  const Index b = net.particle_b[c];
+  const Vec3 n = contact_normal(in, a, b, c);
+  f.intact = cond && cond->intact[c];
+  Vec3 t1;
+  if (f.intact) {
+    t1 = any_perpendicular(n);
+  } else {
+    // SPEC 4: the plane's frame turns with the contact, carrying every point's shear history.
+    const PlaneRotation rot{cs.normal[c], n, 0.5 * in.dt * (in.w[a] + in.w[b]).dot(n)};
+    t1 = rot.turn_frame_axis(cs.tangent[c]);
+    if (!(t1.squaredNorm() > 0.5)) t1 = any_perpendicular(n);  // only after a turn near 90 deg
+  }
+  cs.normal[c] = n;
+  cs.tangent[c] = t1;
+  f.n = n;
+  f.t1 = t1;
+  f.t2 = n.cross(t1);
+  Eigen::Matrix3d frame_t;  // E^T: rows n, t1, t2
+  frame_t.row(0) = n.transpose();
+  frame_t.row(1) = t1.transpose();
+  frame_t.row(2) = f.t2.transpose();
+  const Eigen::Matrix3d& ra = in.rotation[a];
+  const Eigen::Matrix3d& rb = in.rotation[b];
+  f.dx = in.x[b] - in.x[a];
+  const Vec3 r0 = in.x0[b] - in.x0[a];
+  Vec3 u0;
+  for (int i = 0; i < 3; ++i)
+    u0[i] = offset_displacement(f.dx[i], rb(i, 0), rb(i, 1), rb(i, 2), r0.x(), r0.y(), r0.z());
+  f.disp = frame_t * (rb - ra);
+  f.disp0 = frame_t * u0;
+  f.arm = frame_t * (0.5 * (ra + rb));
+  f.xa0 = in.x0[a];
+}
+
+// The points of contact c in its frame `f`, and what the contact then exerts: the second half.
+template <typename Law, bool kPointsOnly = false>
+[[gnu::always_inline]] inline void contact_points(const Law& law, const ContactInputs& in,
+                                                  ContactState& cs, ElasticCondensation* cond,
+                                                  Index c, const ContactFrame& f) {
+  const ContactNetwork& net = in.net;
+  Real phi_n = 0.0, phi_1 = 0.0, phi_2 = 0.0, mom_n = 0.0, mom_1 = 0.0, mom_2 = 0.0;
+  Real damage = 0.0, friction = 0.0, max_damage = 0.0;
+  const PointUpdate<Law> point{law,
+                               net.point_position0.data(),
+                               net.constants.data(),
+                               cs.point.pointers(),
+                               f.xa0,
+                               f.disp0,
+                               f.disp,
+                               f.arm};
+  const Index begin = net.point_begin[c], end = net.point_begin[c + 1];
+#pragma omp simd reduction(+ : phi_n, phi_1, phi_2, mom_n, mom_1, mom_2, damage, friction) \
+    reduction(max : max_damage)
+  for (Index m = begin; m < end; ++m) {
+    const PointSums o = point(m);
+    phi_n += o.f_n;
+    phi_1 += o.f_1;
+    phi_2 += o.f_2;
+    mom_n += o.m_n;
+    mom_1 += o.m_1;
+    mom_2 += o.m_2;
+    damage += o.damage;
+    friction += o.friction;
+    max_damage = std::max(max_damage, o.point_damage);
+  }
+  if constexpr (kPointsOnly) return;
+  if (f.intact && max_damage > 0) cond->intact[c] = 0;
+  const Vec3 force = phi_n * f.n + phi_1 * f.t1 + phi_2 * f.t2;
+  const Vec3 moment_a = mom_n * f.n + mom_1 * f.t1 + mom_2 * f.t2;
+  cs.force_b[c] = force;
+  cs.torque_b[c] = moment_a - f.dx.cross(force);
+  cs.torque_a[c] = -moment_a;
+  cs.dissipated_damage[c] = damage;
+  cs.dissipated_friction[c] = friction;
+}
+
 // One contact through its points (kPointsOnly: only the points' histories and the frame, for
 // ElasticCondensation's catch-up; nothing the gather reads).
 //
@@ -119,71 +217,9 @@ template <typename Law, bool kPointsOnly = false>
 [[gnu::always_inline]] inline void evaluate_contact(const Law& law, const ContactInputs& in,
                                                     ContactState& cs, ElasticCondensation* cond,
                                                     Index c) {
-  const ContactNetwork& net = in.net;
-  const Index a = net.particle_a[c];
-  const Index b = net.particle_b[c];
-  const Vec3 n = contact_normal(in, a, b, c);
-  const bool intact = cond && cond->intact[c];
-  Vec3 t1;
-  if (intact) {
-    t1 = any_perpendicular(n);
-  } else {
-    // SPEC 4: the plane's frame turns with the contact, carrying every point's shear history.
-    const PlaneRotation rot{cs.normal[c], n, 0.5 * in.dt * (in.w[a] + in.w[b]).dot(n)};
-    t1 = rot.turn_frame_axis(cs.tangent[c]);
-    if (!(t1.squaredNorm() > 0.5)) t1 = any_perpendicular(n);  // only after a turn near 90 deg
-  }
-  cs.normal[c] = n;
-  cs.tangent[c] = t1;
-  const Vec3 t2 = n.cross(t1);
-  Eigen::Matrix3d frame_t;  // E^T: rows n, t1, t2
-  frame_t.row(0) = n.transpose();
-  frame_t.row(1) = t1.transpose();
-  frame_t.row(2) = t2.transpose();
-  const Eigen::Matrix3d& ra = in.rotation[a];
-  const Eigen::Matrix3d& rb = in.rotation[b];
-  const Vec3 dx = in.x[b] - in.x[a];
-  const Vec3 r0 = in.x0[b] - in.x0[a];
-  Vec3 u0;
-  for (int i = 0; i < 3; ++i)
-    u0[i] = offset_displacement(dx[i], rb(i, 0), rb(i, 1), rb(i, 2), r0.x(), r0.y(), r0.z());
-  const Eigen::Matrix3d disp = frame_t * (rb - ra);
-  const Vec3 disp0 = frame_t * u0;
-  const Eigen::Matrix3d arm = frame_t * (0.5 * (ra + rb));
-  Real phi_n = 0.0, phi_1 = 0.0, phi_2 = 0.0, mom_n = 0.0, mom_1 = 0.0, mom_2 = 0.0;
-  Real damage = 0.0, friction = 0.0, max_damage = 0.0;
-  const PointUpdate<Law> point{law,
-                               net.point_position0.data(),
-                               net.constants.data(),
-                               cs.point.pointers(),
-                               in.x0[a],
-                               disp0,
-                               disp,
-                               arm};
-  const Index begin = net.point_begin[c], end = net.point_begin[c + 1];
-#pragma omp simd reduction(+ : phi_n, phi_1, phi_2, mom_n, mom_1, mom_2, damage, friction) \
-    reduction(max : max_damage)
-  for (Index m = begin; m < end; ++m) {
-    const PointSums o = point(m);
-    phi_n += o.f_n;
-    phi_1 += o.f_1;
-    phi_2 += o.f_2;
-    mom_n += o.m_n;
-    mom_1 += o.m_1;
-    mom_2 += o.m_2;
-    damage += o.damage;
-    friction += o.friction;
-    max_damage = std::max(max_damage, o.point_damage);
-  }
-  if constexpr (kPointsOnly) return;
-  if (intact && max_damage > 0) cond->intact[c] = 0;
-  const Vec3 f = phi_n * n + phi_1 * t1 + phi_2 * t2;
-  const Vec3 moment_a = mom_n * n + mom_1 * t1 + mom_2 * t2;
-  cs.force_b[c] = f;
-  cs.torque_b[c] = moment_a - dx.cross(f);
-  cs.torque_a[c] = -moment_a;
-  cs.dissipated_damage[c] = damage;
-  cs.dissipated_friction[c] = friction;
+  ContactFrame f;
+  contact_frame(in, cs, cond, c, f);
+  contact_points<Law, kPointsOnly>(law, in, cs, cond, c, f);
 }
 
 // The loop over a network's contacts. With `cond` (the concrete network under BL), an intact
@@ -215,16 +251,21 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
   parallel_for_blocks(in.net.contact_count(), CondensedBlock::kSize, [&](Index begin, Index end) {
     CondensedBlock block;
     evaluate_condensed_block(ci, begin, end - begin, cs, block);
-    bool visited = false;
+    // The contacts that go through their points: every frame first, then every contact's points.
+    Index visit[CondensedBlock::kSize];
+    ContactFrame frames[CondensedBlock::kSize];
+    Index visits = 0;
     for (Index c = begin; c < end; ++c) {
       const bool was_condensed = cond->condensed[c];
       const bool keep = cond->intact[c] && block.below_limits[c - begin];
       cond->condensed[c] = keep;
       if (keep) continue;
       if (was_condensed) evaluate_contact<Law, true>(law, *previous, cs, cond, c);
-      evaluate_contact(law, in, cs, cond, c);
-      visited = true;
+      contact_frame(in, cs, cond, c, frames[visits]);
+      visit[visits++] = c;
     }
+    for (Index k = 0; k < visits; ++k) contact_points(law, in, cs, cond, visit[k], frames[k]);
+    const bool visited = visits > 0;
     // A block evaluated from its sums alone dissipated exactly zero (the kernel stores zeros).
     Real damage = 0.0, friction = 0.0;
     for (Index c = begin; visited && c < end; ++c) {
