@@ -8,23 +8,35 @@
 
 namespace rcdem {
 
+// Body i's contacts: entry[begin[i], mid[i]) those where it is B, then entry[mid[i], begin[i+1])
+// those where it is A, each in contact order. Two runs instead of a side bit per entry: the gather
+// then has no branch per contact, which mispredicted at every change of side and held back the
+// loads behind it (the gather was a fifth of an elastic step). The networks are built with A < B
+// and numbered by A, so a body's B-side contacts come before its own: the same order as one run
+// in contact order.
 struct BodyContacts {
   std::vector<Index> begin;  // size bodies + 1
-  std::vector<Index> entry;  // contact index * 2 + (1 if the body is B, 0 if A)
+  std::vector<Index> mid;    // size bodies
+  std::vector<Index> entry;  // contact indices
 
   static BodyContacts build(const ContactNetwork& net, Index bodies) {
     BodyContacts bc;
-    bc.begin.assign(static_cast<std::size_t>(bodies) + 1, 0);
+    const auto n = static_cast<std::size_t>(bodies);
+    bc.begin.assign(n + 1, 0);
+    std::vector<Index> as_b(n, 0);
     for (Index c = 0; c < net.contact_count(); ++c) {
       ++bc.begin[net.particle_a[c] + 1];
       ++bc.begin[net.particle_b[c] + 1];
+      ++as_b[net.particle_b[c]];
     }
     for (Index i = 0; i < bodies; ++i) bc.begin[i + 1] += bc.begin[i];
+    bc.mid.resize(n);
+    for (Index i = 0; i < bodies; ++i) bc.mid[i] = bc.begin[i] + as_b[i];
     bc.entry.resize(static_cast<std::size_t>(bc.begin.back()));
-    std::vector<Index> fill(bc.begin.begin(), bc.begin.end() - 1);
+    std::vector<Index> fill_b(bc.begin.begin(), bc.begin.end() - 1), fill_a(bc.mid);
     for (Index c = 0; c < net.contact_count(); ++c) {
-      bc.entry[fill[net.particle_a[c]]++] = 2 * c;
-      bc.entry[fill[net.particle_b[c]]++] = 2 * c + 1;
+      bc.entry[fill_a[net.particle_a[c]]++] = c;
+      bc.entry[fill_b[net.particle_b[c]]++] = c;
     }
     return bc;
   }
