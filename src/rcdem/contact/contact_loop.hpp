@@ -156,6 +156,27 @@ struct ContactFrame {
   f.xa0 = in.x0[a];
 }
 
+// Asks for the cache lines that hold elements [begin, end) of an array (kWrite: to be written).
+template <int kWrite, typename T>
+[[gnu::always_inline]] inline void prefetch_elements(const T* p, Index begin, Index end) {
+  const char* lo = reinterpret_cast<const char*>(p + begin);
+  const char* hi = reinterpret_cast<const char*>(p + end) - 1;
+  for (const char* q = lo; q < hi; q += 64) __builtin_prefetch(q, kWrite);
+  __builtin_prefetch(hi, kWrite);
+}
+
+// Contact c's points' data, requested while the block forms its frames: the damaged contacts of a
+// block lie scattered among condensed ones, so no hardware prefetcher follows them, and the first
+// touch of each one's points was the point path's largest cost (bench/RESULTS.md, session 11).
+[[gnu::always_inline]] inline void prefetch_points(const ContactNetwork& net,
+                                                   const LocalPointPointers& h, Index c) {
+  const Index begin = net.point_begin[c], end = net.point_begin[c + 1];
+  prefetch_elements<0>(net.point_position0.data(), begin, end);
+  prefetch_elements<0>(net.constants.data(), begin, end);
+  for (const Real* a : {h.fn, h.fs1, h.fs2, h.un, h.us1, h.us2, h.un_max, h.us_max_sq, h.damage})
+    prefetch_elements<1>(a, begin, end);
+}
+
 // The points of contact c in its frame `f`, and what the contact then exerts: the second half.
 template <typename Law, bool kPointsOnly = false>
 [[gnu::always_inline]] inline void contact_points(const Law& law, const ContactInputs& in,
@@ -252,6 +273,7 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
     CondensedBlock block;
     evaluate_condensed_block(ci, begin, end - begin, cs, block);
     // The contacts that go through their points: every frame first, then every contact's points.
+    const LocalPointPointers history = cs.point.pointers();
     Index visit[CondensedBlock::kSize];
     ContactFrame frames[CondensedBlock::kSize];
     Index visits = 0;
@@ -261,6 +283,7 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
       cond->condensed[c] = keep;
       if (keep) continue;
       if (was_condensed) evaluate_contact<Law, true>(law, *previous, cs, cond, c);
+      prefetch_points(in.net, history, c);
       contact_frame(in, cs, cond, c, frames[visits]);
       visit[visits++] = c;
     }
