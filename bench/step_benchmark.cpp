@@ -79,7 +79,7 @@ using rcdem::Vec3;
 //   contact loop: pose read 64 (the condensed kernel); while some contacts go through their
 //                 points also position copy, position0, angular_velocity 3 Vec3 and the rotation
 //                 matrix read 144
-//   gather:       begin Index read 8; force, torque  2 Vec3 write  48
+//   gather:       begin, mid  2 Index read 16; force, torque  2 Vec3 write  48
 //   integrate (a sphere, solver/sphere_update.cpp; the few cylinders are not counted apart):
 //                 velocity, angular_velocity, position  3 Vec3 read + write 144; angular_momentum
 //                 Vec3 write 24; orientation Quat read + write 64; force, torque, inertia  3 Vec3
@@ -87,7 +87,7 @@ using rcdem::Vec3;
 //                 jumped  int64 write 8
 //   instability check: jumped read 8
 //   energy ledger: damping_work, kinetic  2 Real read 16
-//                                                           = 704 (+ 144 with the point path)
+//                                                           = 712 (+ 144 with the point path)
 // Per plate contact (solver/plates.cpp; one per boundary face under a plate's face):
 //   evaluate: plate int r 4, particle Index r 8, point0 Vec3 r 24, constants r 32,
 //             state LocalPointState r+w 176, force + torque Vec3 w 48, strain + friction Real w 16,
@@ -144,7 +144,7 @@ ByteCount count_bytes(const rcdem::Simulation& sim) {
   const bool point_path = sim.condensed_contacts() < sim.specimen().contacts.contact_count();
   b.per_body = (V + Q + 9 * R + V + P)                                // kinematics
                + P + (point_path ? 3 * V + 9 * R : 0.0)               // contact loop
-               + (I + 2 * V)                                          // gather
+               + (2 * I + 2 * V)                                      // gather
                + (3 * 2 * V + V + 2 * Q + 3 * V + 2 * R + 2 * R + J)  // integrate
                + J                                                    // instability check
                + 2 * R;                                               // energy ledger
