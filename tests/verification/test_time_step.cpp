@@ -13,12 +13,15 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <limits>
+#include <vector>
 #include <string>
 
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/rng.hpp"
 #include "rcdem/io/scenario.hpp"
 #include "rcdem/solver/body_stiffness.hpp"
+#include "rcdem/solver/selective_mass_scaling.hpp"
 #include "rcdem/solver/simulation.hpp"
 #include "rcdem/specimens/specimen.hpp"
 #include "static_model.hpp"
@@ -66,12 +69,13 @@ TEST(BodyStiffness, IsotropicSpringsAndPrincipalFrame) {
 
 namespace {
 
-Scenario glued_box(Real size, Real alpha, Real inertia_scaling) {
-  return test::elastic_box(
-      size,
-      fmt::format("dt_safety = 0.5\nparticle_rotational_inertia_scaling = {}\n", inertia_scaling) +
-          test::glued_platens(),
-      0.0, alpha);
+Scenario glued_box(Real size, Real alpha, Real inertia_scaling, Real added_mass_limit = 0.0) {
+  return test::elastic_box(size,
+                           fmt::format("dt_safety = 0.5\nparticle_rotational_inertia_scaling = "
+                                       "{}\nadded_mass_limit = {}\n",
+                                       inertia_scaling, added_mass_limit) +
+                               test::glued_platens(),
+                           0.0, alpha);
 }
 
 // omega_max of M^-1 K, K the tangent stiffness assembled from the solver's own force routines.
@@ -134,4 +138,87 @@ TEST(TimeStep, EstimateBracketsTheAssemblysCriticalStep) {
         c.alpha, c.inertia_scaling, (long long)sim.bodies().size(), est, est / dt_crit, dt_crit,
         sim.stable_time_step_limit().c_str());
   }
+}
+
+// 4. Selective mass scaling (solver/selective_mass_scaling.hpp). The plan, by hand: steps
+// {4, 1, 2, inf, 3} s with masses {1, 2, 1, 5, 1} kg (total 10). Raising the k shortest to T adds
+// T^2 sum(m / dt^2) - sum(m): with 1 kg allowed, body 1 alone, 2 (T^2 - 1) = 1, T = sqrt(1.5);
+// with 10 kg, body 1 would pass body 2's 2 s, so both: 2.25 T^2 - 3 = 10, T = sqrt(13 / 2.25).
+TEST(SelectiveMassScaling, PlanRaisesTheShortestStepsWithinTheAddedMass) {
+  const Real inf = std::numeric_limits<Real>::infinity();
+  const std::vector<Real> step{4, 1, 2, inf, 3}, mass{1, 2, 1, 5, 1};
+  struct Case {
+    Real limit, target;
+    Index scaled;
+  };
+  for (const Case c : {Case{0.1, std::sqrt(1.5), 1}, Case{0.5, std::sqrt(3.5), 1},
+                       Case{1.0, std::sqrt(13 / 2.25), 2}}) {
+    const MassScalingPlan p = plan_selective_mass_scaling(step, mass, c.limit);
+    EXPECT_NEAR(p.time_step, c.target, 1e-14 * c.target) << c.limit;
+    EXPECT_EQ(p.unscaled_step, 1.0);
+    EXPECT_EQ(p.total_mass, 10.0);
+    EXPECT_EQ(p.bodies_scaled, c.scaled);
+    EXPECT_NEAR(p.added_mass, c.limit * p.total_mass, 1e-13);
+    Real added = 0;
+    for (std::size_t i = 0; i < step.size(); ++i) {
+      // Each raised body's estimate, sqrt(f) dt, is the target; the others are untouched.
+      if (step[i] < c.target) {
+        EXPECT_NEAR(std::sqrt(p.factor[i]) * step[i], c.target, 1e-14 * c.target);
+      } else {
+        EXPECT_EQ(p.factor[i], 1.0);
+      }
+      added += mass[i] * (p.factor[i] - 1);
+    }
+    EXPECT_NEAR(added, p.added_mass, 1e-13);
+    EXPECT_NEAR(p.largest_factor, c.target * c.target, 1e-13);
+  }
+  // Off: the identity, exactly.
+  const MassScalingPlan off = plan_selective_mass_scaling(step, mass, 0.0);
+  EXPECT_EQ(off.time_step, 1.0);
+  EXPECT_EQ(off.bodies_scaled, 0);
+  EXPECT_EQ(off.added_mass, 0.0);
+  for (const Real f : off.factor) EXPECT_EQ(f, 1.0);
+  // A budget beyond every finite step raises them all: 1.25 T^2 - 2 = 20.
+  const MassScalingPlan all = plan_selective_mass_scaling({1, 2}, {1, 1}, 10.0);
+  EXPECT_NEAR(all.time_step, std::sqrt(22 / 1.25), 1e-14);
+  EXPECT_EQ(all.bodies_scaled, 2);
+}
+
+// 5. On a glued box, the scaled specimen's estimate is the plan's target, longer than without
+// scaling, the specimen is heavier by exactly the fraction allowed, and the estimate still
+// brackets the critical step of the assembly with its new masses (stable at 0.97 dt_crit,
+// unstable at 1.05): each raised body's own estimate is lifted to the target, and no further.
+TEST(SelectiveMassScaling, ScaledSpecimenKeepsTheCriticalStepBracket) {
+  const Real limit = 0.03;
+  const Scenario plain = glued_box(0.025, 0.3, 2.5);
+  const Scenario scaled = glued_box(0.025, 0.3, 2.5, limit);
+  const Specimen sp = build_specimen(plain);
+  const Simulation before(plain, sp);
+  Simulation sim(scaled, sp);
+  const MassScalingPlan& p = sim.mass_scaling();
+  EXPECT_EQ(before.mass_scaling().bodies_scaled, 0);
+  ASSERT_GT(p.bodies_scaled, 0);
+  EXPECT_EQ(p.unscaled_step, before.stable_time_step());
+  EXPECT_EQ(sim.stable_time_step(), p.time_step);
+  EXPECT_GT(sim.stable_time_step(), 1.05 * before.stable_time_step());
+  Real m0 = 0, m1 = 0;
+  for (Index i = 0; i < sim.bodies().size(); ++i) {
+    m0 += before.bodies().mass[i];
+    m1 += sim.bodies().mass[i];
+    // Mass and inertia by the same factor: the particle's inertia stays isotropic.
+    EXPECT_NEAR(sim.bodies().inertia[i].x() / before.bodies().inertia[i].x(),
+                sim.bodies().mass[i] / before.bodies().mass[i], 1e-12);
+  }
+  EXPECT_NEAR(m1 / m0, 1 + limit, 1e-12);
+  const Real dt_crit = 2.0 / highest_frequency(sim);
+  EXPECT_GE(sim.stable_time_step(), 0.5 * dt_crit * (1 - 1e-6));
+  EXPECT_LE(sim.stable_time_step(), dt_crit / std::sqrt(2.0) * (1 + 1e-6));
+  Simulation below(scaled, sp), above(scaled, sp);
+  EXPECT_TRUE(runs_stably(below, 0.97 * dt_crit, 3000));
+  EXPECT_FALSE(runs_stably(above, 1.05 * dt_crit, 3000));
+  std::printf("[selective mass scaling, +%.0f%% mass] %lld of %lld bodies up to %.3fx: estimate "
+              "%.4g -> %.4g s (x%.3f), %.3f dt_crit\n",
+              100 * limit, (long long)p.bodies_scaled, (long long)sim.bodies().size(),
+              p.largest_factor, p.unscaled_step, p.time_step, p.time_step / p.unscaled_step,
+              p.time_step / dt_crit);
 }

@@ -300,6 +300,7 @@ Scenario convert(Reader& r, const std::string& text) {
   s.solver.time_step = r.real("solver.time_step");
   s.solver.damping = r.real("solver.damping");
   s.solver.mass_scaling = r.real("solver.mass_scaling");
+  s.solver.added_mass_limit = r.real("solver.added_mass_limit");
   s.solver.bar_rotational_inertia_scaling = r.real("solver.bar_rotational_inertia_scaling");
   s.solver.particle_rotational_inertia_scaling =
       r.real("solver.particle_rotational_inertia_scaling");

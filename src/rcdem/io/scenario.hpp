@@ -55,6 +55,7 @@ struct SolverSettings {
   Real time_step = 0.0;  // 0 = automatic
   Real damping = 0.7;
   Real mass_scaling = 1.0;
+  Real added_mass_limit = 0.0;  // selective mass scaling (solver/selective_mass_scaling.hpp)
   Real bar_rotational_inertia_scaling = 1.0;       // the cylinders' moments of inertia only
   Real particle_rotational_inertia_scaling = 1.0;  // the particles' moments of inertia only
   bool condense_elastic_contacts = true;  // contact/elastic_condensation.hpp

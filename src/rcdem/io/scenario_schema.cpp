@@ -133,6 +133,11 @@ Schema build() {
   s.key(real(
       "solver.mass_scaling", 1.0, Range{1.0, 1.0e8}, "",
       "Multiply every mass and inertia by this (a larger stable step for quasi-static runs)."));
+  s.key(real("solver.added_mass_limit", 0.0, Range{0.0, 0.1}, "",
+             "Selective mass scaling: the bodies whose own stable step is shortest get heavier "
+             "(mass and moments of inertia alike) until every body reaches a common step, the "
+             "longest whose added mass is at most this fraction of the total (0.005 = 0.5%). "
+             "0 = off. The run's header and summary.json report the bodies, factors and mass."));
   s.key(real("solver.bar_rotational_inertia_scaling", 1.0, Range{1.0, 1.0e4}, "",
              "Multiply the moments of inertia of the bars' cylinders by this: with coarse "
              "particles the bars' rotation (torsion, then bending) sets the time step, and a "

@@ -9,6 +9,7 @@
 #include "rcdem/core/parallel.hpp"
 #include "rcdem/reinforcement/rigid_rotation.hpp"
 #include "rcdem/solver/body_stiffness.hpp"
+#include "rcdem/solver/selective_mass_scaling.hpp"
 #include "rcdem/solver/sphere_update.hpp"
 #include "rcdem/tessellation/interface_network_builder.hpp"
 
@@ -115,7 +116,7 @@ Simulation::Simulation(const Scenario& sc, Specimen specimen)
   position_eval_ = bodies_.position;
   position_prev_ = bodies_.position;
   pose_.resize(bodies_.size());
-  compute_stable_time_step();
+  compute_stable_time_step(sc.solver.added_mass_limit);
   dt_ = sc.solver.dt_safety * stable_dt_;
   if (sc.solver.time_step > 0.0) {
     if (sc.solver.time_step > 0.5 * stable_dt_)
@@ -127,7 +128,7 @@ Simulation::Simulation(const Scenario& sc, Specimen specimen)
   }
 }
 
-void Simulation::compute_stable_time_step() {
+void Simulation::compute_stable_time_step(Real added_mass_limit) {
   // SPEC 6's sqrt(m / sum k) per body, with "sum k" the body's own 6x6 stiffness block
   // (solver/body_stiffness.hpp: why a block, and what the safety factor covers).
   BodyStiffness blocks(bodies_.size());
@@ -170,23 +171,44 @@ void Simulation::compute_stable_time_step() {
       blocks.add_rotational(i, kr);
     }
   }
-  Real dt = std::numeric_limits<Real>::infinity();
+  std::vector<Real> steps(static_cast<std::size_t>(bodies_.size()));
+  std::vector<BodyStiffness::Limit> limits;
+  limits.reserve(steps.size());
   for (Index i = 0; i < bodies_.size(); ++i) {
-    const BodyStiffness::Limit l = blocks.limit(i, bodies_.mass[i], bodies_.inertia[i],
-                                                bodies_.orientation0[i].toRotationMatrix());
-    if (l.time_step >= dt) continue;
-    dt = l.time_step;
-    const bool cylinder = i >= specimen_.concrete();
-    static const char* const kWhat[] = {"rotation about body axis x", "rotation about body axis y",
-                                        "rotation about body axis z"};
-    static const char* const kCylinder[] = {"bending rotation", "bending rotation", "torsion"};
-    stable_dt_limit_ = fmt::format("{} {} ({})", cylinder ? "bar cylinder" : "particle", i,
-                                   !l.rotation ? "translation"
-                                   : cylinder  ? kCylinder[l.body_axis]
-                                               : kWhat[l.body_axis]);
+    limits.push_back(blocks.limit(i, bodies_.mass[i], bodies_.inertia[i],
+                                  bodies_.orientation0[i].toRotationMatrix()));
+    steps[static_cast<std::size_t>(i)] = limits.back().time_step;
   }
-  if (!std::isfinite(dt)) fail("the specimen has no contact: no time step can be estimated");
-  stable_dt_ = dt;
+  // The body and motion that set the estimate, in words.
+  Index first = 0;
+  for (Index i = 1; i < bodies_.size(); ++i)
+    if (steps[static_cast<std::size_t>(i)] < steps[static_cast<std::size_t>(first)]) first = i;
+  const BodyStiffness::Limit& l = limits[static_cast<std::size_t>(first)];
+  if (!std::isfinite(l.time_step)) fail("the specimen has no contact: no time step can be estimated");
+  const bool cylinder = first >= specimen_.concrete();
+  static const char* const kWhat[] = {"rotation about body axis x", "rotation about body axis y",
+                                      "rotation about body axis z"};
+  static const char* const kCylinder[] = {"bending rotation", "bending rotation", "torsion"};
+  stable_dt_limit_ = fmt::format("{} {} ({})", cylinder ? "bar cylinder" : "particle", first,
+                                 !l.rotation ? "translation"
+                                 : cylinder  ? kCylinder[l.body_axis]
+                                             : kWhat[l.body_axis]);
+  // Selective mass scaling (solver/selective_mass_scaling.hpp): the bodies below a common target
+  // made heavier, mass and inertia alike, which lifts each one's estimate to the target exactly.
+  mass_scaling_ = plan_selective_mass_scaling(steps, bodies_.mass, added_mass_limit);
+  for (Index i = 0; i < bodies_.size(); ++i) {
+    const Real f = mass_scaling_.factor[static_cast<std::size_t>(i)];
+    bodies_.mass[i] *= f;
+    bodies_.inertia[i] *= f;
+  }
+  if (mass_scaling_.bodies_scaled > 0)
+    stable_dt_limit_ = fmt::format(
+        "selective mass scaling: {} bodies up to {:.3f}x heavier, +{:.3g}% mass; unscaled {:.4g} "
+        "s, set by {}",
+        mass_scaling_.bodies_scaled, mass_scaling_.largest_factor,
+        100.0 * mass_scaling_.added_mass / mass_scaling_.total_mass, mass_scaling_.unscaled_step,
+        stable_dt_limit_);
+  stable_dt_ = mass_scaling_.time_step;
 }
 
 ContactInputs Simulation::concrete_inputs(const std::vector<Vec3>& positions,

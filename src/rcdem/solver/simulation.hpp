@@ -14,6 +14,7 @@
 #include "rcdem/solver/body_contacts.hpp"
 #include "rcdem/solver/energy.hpp"
 #include "rcdem/solver/plates.hpp"
+#include "rcdem/solver/selective_mass_scaling.hpp"
 #include "rcdem/specimens/specimen.hpp"
 #include "rcdem/state/bodies.hpp"
 
@@ -46,10 +47,13 @@ class Simulation {
 
   void step();
 
-  // min over bodies of sqrt(m / sum k) and sqrt(I / sum k r^2) (SPEC 6).
+  // min over bodies of sqrt(m / sum k) and sqrt(I / sum k r^2) (SPEC 6), with the masses after
+  // any selective mass scaling.
   Real stable_time_step() const { return stable_dt_; }
   // Which body and motion set the stable estimate, in words.
   const std::string& stable_time_step_limit() const { return stable_dt_limit_; }
+  // solver.added_mass_limit's selective mass scaling, as applied (identity when off).
+  const MassScalingPlan& mass_scaling() const { return mass_scaling_; }
   Real time_step() const { return dt_; }
   void set_time_step(Real dt) { dt_ = dt; }  // for tests that probe stability
   Real time() const { return time_; }
@@ -115,7 +119,7 @@ class Simulation {
 
  private:
   friend struct io::CheckpointAccess;
-  void compute_stable_time_step();
+  void compute_stable_time_step(Real added_mass_limit);
   ContactInputs concrete_inputs(const std::vector<Vec3>& positions,
                                 const std::vector<Eigen::Matrix3d>& rotation) const;
   void gather_forces();
@@ -148,6 +152,7 @@ class Simulation {
   Real damping_;
   Real dt_ = 0.0, stable_dt_ = 0.0;
   std::string stable_dt_limit_;
+  MassScalingPlan mass_scaling_;
   Real time_ = 0.0;
   std::int64_t steps_ = 0;
   Energy energy_;
