@@ -73,6 +73,7 @@ using rcdem::Vec3;
 //                                          sides; counted once, the second visit is cached)
 //   energy ledger: the 2 dissipations      2 Real read        16
 //                                                           = 312
+//   (a condensed contact: its sums and flags instead of its points, frame and dissipations)
 // Per body (all bodies: concrete spheres and the bars' cylinders):
 //   kinematics:   position Vec3 + orientation Quat read 56; rotation matrix (9 Real), position
 //                 copy (Vec3) and pose (BodyPoses: 8 Real, one line) write 160
@@ -137,9 +138,10 @@ ByteCount count_bytes(const rcdem::Simulation& sim) {
                   + (2 * I + 3 * V)                        // gather: CSR entries, force and torques
                   + 2 * R;                                 // energy ledger
   // A condensed contact (contact/elastic_condensation.hpp) reads its sums and two flags instead of
-  // its points, and leaves its frame (normal, tangent: read + written) alone.
-  b.per_condensed_contact =
-      b.per_contact - 2 * 2 * V + rcdem::CondensedSums::kBytesPerContact + 2 * sizeof(std::uint8_t);
+  // its points, and leaves its frame (normal, tangent: read + written) and its two dissipations
+  // (exactly zero: not written, and its block's ledger sum reads only the visited contacts') alone.
+  b.per_condensed_contact = b.per_contact - 2 * 2 * V - 2 * R - 2 * R +
+                            rcdem::CondensedSums::kBytesPerContact + 2 * sizeof(std::uint8_t);
   constexpr double J = sizeof(std::int64_t), P = rcdem::BodyPoses::kStride * R;
   const bool point_path = sim.condensed_contacts() < sim.specimen().contacts.contact_count();
   b.per_body = (V + Q + 9 * R + V + P)                                // kinematics

@@ -288,12 +288,13 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
       visit[visits++] = c;
     }
     for (Index k = 0; k < visits; ++k) contact_points(law, in, cs, cond, visit[k], frames[k]);
-    const bool visited = visits > 0;
-    // A block evaluated from its sums alone dissipated exactly zero (the kernel stores zeros).
+    // Contacts evaluated from their sums dissipate exactly zero, so the kernel does not store it
+    // (16 bytes a contact less to write) and the block sums its visited contacts, in contact
+    // order: the same sum as over all of them with zeros.
     Real damage = 0.0, friction = 0.0;
-    for (Index c = begin; visited && c < end; ++c) {
-      damage += cs.dissipated_damage[c];
-      friction += cs.dissipated_friction[c];
+    for (Index k = 0; k < visits; ++k) {
+      damage += cs.dissipated_damage[visit[k]];
+      friction += cs.dissipated_friction[visit[k]];
     }
     cs.block_damage[begin / CondensedBlock::kSize] = damage;
     cs.block_friction[begin / CondensedBlock::kSize] = friction;

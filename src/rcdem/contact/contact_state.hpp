@@ -21,7 +21,9 @@ struct ContactState {
   // (along t1, along t2, 0) in it: one frame rotated per contact instead of two vectors per point.
   std::vector<Vec3> tangent;
 
-  // Per contact, written by each evaluation.
+  // Per contact, written by each evaluation (the two dissipations only by the point loop: a
+  // contact evaluated from its sums dissipates nothing, and the ledger then reads the blocks'
+  // sums below, not these).
   std::vector<Vec3> force_b;              // total force on B (on A: its opposite)
   std::vector<Vec3> torque_b;             // about B's centre
   std::vector<Vec3> torque_a;             // about A's centre

@@ -99,8 +99,6 @@ void evaluate_condensed_block(const CondensedInputs& in, Index begin, Index coun
   Real* force_b = cs.force_b[begin].data();
   Real* torque_b = cs.torque_b[begin].data();
   Real* torque_a = cs.torque_a[begin].data();
-  Real* damage = cs.dissipated_damage.data() + begin;
-  Real* friction = cs.dissipated_friction.data() + begin;
   const Index* pa = in.particle_a + begin;
   const Index* pb = in.particle_b + begin;
   constexpr Real kMargin = 1.0 - 1e-3;
@@ -179,8 +177,6 @@ void evaluate_condensed_block(const CondensedInputs& in, Index begin, Index coun
       torque_b[3 * l + i] = mom[i] - dxf[i];
       torque_a[3 * l + i] = -mom[i];
     }
-    damage[l] = 0.0;
-    friction[l] = 0.0;
   }
 }
 

@@ -72,7 +72,7 @@ struct ElasticCondensation {
 // The condensed evaluation of a block of consecutive contacts (formulas above), written as plain
 // arithmetic on scalars so that GCC runs it in SIMD lanes (8 contacts at a time with AVX-512): the
 // bodies' poses are gathered and their rotation matrices rebuilt in the lanes. Every contact of the
-// block is computed and its force, torques and zero dissipation stored, so no lane branches;
+// block is computed and its force and torques stored, so no lane branches;
 // `below_limits` says which ones the caller may keep (with `intact`); it evaluates the others
 // through their points, which overwrites what was stored. A block covers fixed contact numbers, so
 // a contact is computed by the same instructions whatever the thread count.
@@ -99,7 +99,7 @@ Real condensed_strain_energy(const CondensedSums& sums, Index c, const Vec3& xa,
                              const Eigen::Matrix3d& ra, const Eigen::Matrix3d& rb);
 
 // Contacts [begin, begin + count), count <= CondensedBlock::kSize; writes their entries of
-// force_b, torque_b, torque_a, dissipated_damage, dissipated_friction.
+// force_b, torque_b, torque_a (not their dissipation: zero, and not read for them).
 void evaluate_condensed_block(const CondensedInputs& in, Index begin, Index count, ContactState& cs,
                               CondensedBlock& out);
 
