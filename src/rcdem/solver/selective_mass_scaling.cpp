@@ -12,6 +12,7 @@ MassScalingPlan plan_selective_mass_scaling(const std::vector<Real>& step,
   const std::size_t n = step.size();
   MassScalingPlan plan;
   plan.factor.assign(n, 1.0);
+  plan.step = step;
   plan.total_mass = std::accumulate(mass.begin(), mass.end(), Real{0});
   plan.unscaled_step = std::numeric_limits<Real>::infinity();
   for (const Real s : step) plan.unscaled_step = std::min(plan.unscaled_step, s);

@@ -20,6 +20,7 @@ namespace rcdem {
 struct MassScalingPlan {
   Real time_step = 0;        // every body's estimate after the scaling is at least this
   Real unscaled_step = 0;    // the shortest estimate before it
+  std::vector<Real> step;    // each body's own estimate before it (as given)
   std::vector<Real> factor;  // per body, >= 1 (1: unchanged)
   Index bodies_scaled = 0;
   Real largest_factor = 1;
