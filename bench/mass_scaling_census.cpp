@@ -46,7 +46,8 @@ int main(int argc, char** argv) {
     std::vector<rcdem::Real> sorted = step;
     std::sort(sorted.begin(), sorted.end());
     const auto at = [&](double q) {
-      return sorted[std::min(sorted.size() - 1, static_cast<std::size_t>(q * static_cast<double>(sorted.size())))];
+      return sorted[std::min(sorted.size() - 1,
+                             static_cast<std::size_t>(q * static_cast<double>(sorted.size())))];
     };
     std::printf("scenario=%s bodies=%zu shortest=%.4g s\n", argv[1], step.size(), sorted[0]);
     std::printf("# the bodies' own estimates: 0.1%% %.4g, 1%% %.4g, 10%% %.4g, median %.4g s\n",

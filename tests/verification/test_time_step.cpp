@@ -14,8 +14,8 @@
 #include <Eigen/Dense>
 #include <cmath>
 #include <limits>
-#include <vector>
 #include <string>
+#include <vector>
 
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/rng.hpp"
@@ -216,9 +216,9 @@ TEST(SelectiveMassScaling, ScaledSpecimenKeepsTheCriticalStepBracket) {
   Simulation below(scaled, sp), above(scaled, sp);
   EXPECT_TRUE(runs_stably(below, 0.97 * dt_crit, 3000));
   EXPECT_FALSE(runs_stably(above, 1.05 * dt_crit, 3000));
-  std::printf("[selective mass scaling, +%.0f%% mass] %lld of %lld bodies up to %.3fx: estimate "
-              "%.4g -> %.4g s (x%.3f), %.3f dt_crit\n",
-              100 * limit, (long long)p.bodies_scaled, (long long)sim.bodies().size(),
-              p.largest_factor, p.unscaled_step, p.time_step, p.time_step / p.unscaled_step,
-              p.time_step / dt_crit);
+  std::printf(
+      "[selective mass scaling, +%.0f%% mass] %lld of %lld bodies up to %.3fx: estimate "
+      "%.4g -> %.4g s (x%.3f), %.3f dt_crit\n",
+      100 * limit, (long long)p.bodies_scaled, (long long)sim.bodies().size(), p.largest_factor,
+      p.unscaled_step, p.time_step, p.time_step / p.unscaled_step, p.time_step / dt_crit);
 }

@@ -33,8 +33,7 @@ MassScalingPlan plan_selective_mass_scaling(const std::vector<Real>& step,
     s += mass[i] / (step[i] * step[i]);
     m += mass[i];
     const Real target = std::sqrt((budget + m) / s);
-    const Real next =
-        k + 1 < n ? step[order[k + 1]] : std::numeric_limits<Real>::infinity();
+    const Real next = k + 1 < n ? step[order[k + 1]] : std::numeric_limits<Real>::infinity();
     plan.time_step = std::min(target, next);
     if (target <= next) break;
   }

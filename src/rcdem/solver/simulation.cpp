@@ -184,7 +184,8 @@ void Simulation::compute_stable_time_step(Real added_mass_limit) {
   for (Index i = 1; i < bodies_.size(); ++i)
     if (steps[static_cast<std::size_t>(i)] < steps[static_cast<std::size_t>(first)]) first = i;
   const BodyStiffness::Limit& l = limits[static_cast<std::size_t>(first)];
-  if (!std::isfinite(l.time_step)) fail("the specimen has no contact: no time step can be estimated");
+  if (!std::isfinite(l.time_step))
+    fail("the specimen has no contact: no time step can be estimated");
   const bool cylinder = first >= specimen_.concrete();
   static const char* const kWhat[] = {"rotation about body axis x", "rotation about body axis y",
                                       "rotation about body axis z"};
