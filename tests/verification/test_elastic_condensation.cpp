@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -175,6 +176,33 @@ TEST(ElasticCondensation, CondensedContactGivesItsPointsForceAndTorques) {
   }
   EXPECT_LT(worst_f, 1e-13);
   EXPECT_LT(worst_t, 1e-13);
+}
+
+// The identity the bound rests on: D = R_B - R_A, a difference of two rotations, has singular
+// values 2 sin(phi / 2) (twice) and 0, phi the angle of R_A^T R_B, so |D rho| <= |D|_2 |rho| with
+// |D|_2^2 = |D|_F^2 / 2 exactly, for small and large relative turns alike.
+TEST(ElasticCondensation, DifferenceOfTwoRotationsHasHalfItsFrobeniusNormSquared) {
+  Rng rng(11);
+  const auto random_rotation = [&](Real max_angle) {
+    const Vec3 axis =
+        Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)).normalized();
+    return Eigen::Matrix3d(Eigen::AngleAxis<Real>(rng.uniform(0, max_angle), axis));
+  };
+  for (const Real scale : {1e-6, 1e-3, 0.3, 3.0}) {
+    for (int k = 0; k < 50; ++k) {
+      const Eigen::Matrix3d ra = random_rotation(3.0);
+      const Eigen::Matrix3d rb = ra * random_rotation(scale);
+      const Eigen::Matrix3d d = rb - ra;
+      const Real phi = Eigen::AngleAxis<Real>(ra.transpose() * rb).angle();
+      const Eigen::Vector3d sv = Eigen::JacobiSVD<Eigen::Matrix3d>(d).singularValues();
+      // D's entries are differences of entries <= 1: each carries ~1e-16 of absolute rounding.
+      const Real expected = 2 * std::sin(0.5 * phi), tol = 1e-14 + 1e-12 * expected;
+      EXPECT_NEAR(sv[0], expected, tol) << scale;
+      EXPECT_NEAR(sv[1], expected, tol) << scale;
+      EXPECT_LT(sv[2], 1e-14) << scale;
+      EXPECT_NEAR(d.squaredNorm(), 2 * expected * expected, 4 * expected * tol) << scale;
+    }
+  }
 }
 
 // The bound: with rotations large enough to open some points past their limits the contacts near

@@ -136,8 +136,10 @@ void evaluate_condensed_block(const CondensedInputs& in, Index begin, Index coun
       ac[i] = 0.5 * u0[i] + sm[i] * rc[0] + sm[i + 3] * rc[1] + sm[i + 6] * rc[2];
     }
     const Real ucn = n[0] * uc[0] + n[1] * uc[1] + n[2] * uc[2];
-    // The bound (see above), squared: e = |D|_F radius.
-    const Real spread_sq = d_sq * (radius[l] * radius[l]);
+    // The bound (see above), squared: e = |D|_2 radius, with |D|_2^2 = |D|_F^2 / 2 exactly for a
+    // difference of two rotations (D = R_A (Q - I), Q = R_A^T R_B turning by phi: singular values
+    // 2 sin(phi / 2), twice, and 0), half the Frobenius bound's square.
+    const Real spread_sq = 0.5 * d_sq * (radius[l] * radius[l]);
     const Real room_n = kMargin * u_n0[l] - ucn;
     Real us_sq = 0;
     for (int i = 0; i < 3; ++i) {
