@@ -488,12 +488,11 @@ RunSummary run_scenario(const Scenario& sc, const fs::path& out, const RunOption
     j["stable_time_step_s"] = sim.stable_time_step();
     j["stable_time_step_set_by"] = sim.stable_time_step_limit();
     const MassScalingPlan& ms = sim.mass_scaling();
-    j["selective_mass_scaling"] = {
-        {"added_mass_limit", sc.solver.added_mass_limit},
-        {"bodies_scaled", ms.bodies_scaled},
-        {"largest_factor", ms.largest_factor},
-        {"added_mass_fraction", ms.total_mass > 0.0 ? ms.added_mass / ms.total_mass : 0.0},
-        {"unscaled_stable_time_step_s", ms.unscaled_step}};
+    j["selective_mass_scaling"] = {{"added_mass_limit", sc.solver.added_mass_limit},
+                                   {"bodies_scaled", ms.bodies_scaled},
+                                   {"largest_factor", ms.largest_factor},
+                                   {"added_mass_fraction", ms.added_fraction()},
+                                   {"unscaled_stable_time_step_s", ms.unscaled_step}};
     j["control"] = sc.control_plate.empty() ? sc.control_bar : sc.control_plate;
     j["peak_load_N"] = r.peak_load;
     j["displacement_at_peak_m"] = r.displacement_at_peak;

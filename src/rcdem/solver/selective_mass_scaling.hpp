@@ -26,6 +26,8 @@ struct MassScalingPlan {
   Real largest_factor = 1;
   Real added_mass = 0;  // kg
   Real total_mass = 0;  // kg, before the scaling
+
+  Real added_fraction() const { return total_mass > 0 ? added_mass / total_mass : 0; }
 };
 
 // `step`: each body's own stable estimate (infinite for a body without springs); `mass`: its

@@ -171,19 +171,19 @@ void Simulation::compute_stable_time_step(Real added_mass_limit) {
       blocks.add_rotational(i, kr);
     }
   }
+  // Each body's own estimate, and the body and motion that set the shortest (named below).
   std::vector<Real> steps(static_cast<std::size_t>(bodies_.size()));
-  std::vector<BodyStiffness::Limit> limits;
-  limits.reserve(steps.size());
-  for (Index i = 0; i < bodies_.size(); ++i) {
-    limits.push_back(blocks.limit(i, bodies_.mass[i], bodies_.inertia[i],
-                                  bodies_.orientation0[i].toRotationMatrix()));
-    steps[static_cast<std::size_t>(i)] = limits.back().time_step;
-  }
-  // The body and motion that set the estimate, in words.
   Index first = 0;
-  for (Index i = 1; i < bodies_.size(); ++i)
-    if (steps[static_cast<std::size_t>(i)] < steps[static_cast<std::size_t>(first)]) first = i;
-  const BodyStiffness::Limit& l = limits[static_cast<std::size_t>(first)];
+  BodyStiffness::Limit l{std::numeric_limits<Real>::infinity(), false, 0};
+  for (Index i = 0; i < bodies_.size(); ++i) {
+    const BodyStiffness::Limit li = blocks.limit(i, bodies_.mass[i], bodies_.inertia[i],
+                                                 bodies_.orientation0[i].toRotationMatrix());
+    steps[static_cast<std::size_t>(i)] = li.time_step;
+    if (li.time_step < l.time_step) {
+      l = li;
+      first = i;
+    }
+  }
   if (!std::isfinite(l.time_step))
     fail("the specimen has no contact: no time step can be estimated");
   const bool cylinder = first >= specimen_.concrete();
@@ -207,8 +207,7 @@ void Simulation::compute_stable_time_step(Real added_mass_limit) {
         "selective mass scaling: {} bodies up to {:.3f}x heavier, +{:.3g}% mass; unscaled {:.4g} "
         "s, set by {}",
         mass_scaling_.bodies_scaled, mass_scaling_.largest_factor,
-        100.0 * mass_scaling_.added_mass / mass_scaling_.total_mass, mass_scaling_.unscaled_step,
-        stable_dt_limit_);
+        100.0 * mass_scaling_.added_fraction(), mass_scaling_.unscaled_step, stable_dt_limit_);
   stable_dt_ = mass_scaling_.time_step;
 }
 
