@@ -2,7 +2,7 @@
 // body_stiffness.hpp) are spread over a scenario's specimen, and what selective mass scaling
 // (solver.added_mass_limit, solver/selective_mass_scaling.hpp) would buy at each added-mass
 // budget: the common step, its gain over the shortest estimate, how many bodies get heavier and
-// by how much. The numbers behind docs/model.md 9's choice (bench/RESULTS.md, session 15).
+// by how much. The numbers behind docs/model.md 6's choice (bench/RESULTS.md, session 15).
 // Usage: rcdem_mass_scaling_census SCENARIO.toml [LIMIT ...]   (default limits 0.001 ... 0.1)
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# What selective mass scaling (solver.added_mass_limit, docs/model.md 9) does to the study's quick
+# What selective mass scaling (solver.added_mass_limit, docs/model.md 6) does to the study's quick
 # beams: each case x packing seed x added-mass budget is run from the study's quick scenario with
 # only the seed and the budget changed, and the peaks are printed beside the unscaled run's.
 # A peak that moved by more than the rate criterion of SPEC 6 (2%) would argue against the budget.
