@@ -42,28 +42,30 @@ int main(int argc, char** argv) {
     std::vector<long> inside_run(static_cast<std::size_t>(nc), 0);
     long sum_damaged = 0, sum_inside = 0, sum_open = 0, sum_points_inside = 0, sum_points = 0;
     for (long k = 0; k < steps; ++k) {
-      const rcdem::LocalPointArrays before = sim.contacts().point;
+      const std::vector<rcdem::LocalPointRecord> before(sim.contacts().point.records.begin(),
+                                                        sim.contacts().point.records.end());
       sim.step();
-      const rcdem::LocalPointArrays& after = sim.contacts().point;
+      const auto& after = sim.contacts().point.records;
       long damaged = 0, inside = 0, open = 0;
       for (rcdem::Index c = 0; c < nc; ++c) {
         bool any_damaged = false, all_inside = true, all_open = true;
         for (rcdem::Index m = net.point_begin[c]; m < net.point_begin[c + 1]; ++m) {
           const auto& kc = net.constants[m];
+          const auto i = static_cast<std::size_t>(m);
           // The elastic update from the stored history (bilinear_softening.hpp), to rounding.
-          const double fn = before.fn[m] + kc.kn * (after.un[m] - before.un[m]);
-          const double f1 = before.fs1[m] - kc.ks * (after.us1[m] - before.us1[m]);
-          const double f2 = before.fs2[m] - kc.ks * (after.us2[m] - before.us2[m]);
+          const double fn = before[i].fn + kc.kn * (after[i].un - before[i].un);
+          const double f1 = before[i].fs1 - kc.ks * (after[i].us1 - before[i].us1);
+          const double f2 = before[i].fs2 - kc.ks * (after[i].us2 - before[i].us2);
           const double tol = 1e-9 * kc.fn_max;
-          const bool in = std::abs(after.fn[m] - fn) <= tol && std::abs(after.fs1[m] - f1) <= tol &&
-                          std::abs(after.fs2[m] - f2) <= tol && after.damage[m] == before.damage[m];
-          if (before.damage[m] > 0) {
+          const bool in = std::abs(after[i].fn - fn) <= tol && std::abs(after[i].fs1 - f1) <= tol &&
+                          std::abs(after[i].fs2 - f2) <= tol && after[i].damage == before[i].damage;
+          if (before[i].damage > 0) {
             any_damaged = true;
             ++sum_points;
             sum_points_inside += in;
           }
           all_inside &= in;
-          all_open &= before.damage[m] == 1 && after.fn[m] == 0;
+          all_open &= before[i].damage == 1 && after[i].fn == 0;
         }
         if (!any_damaged) continue;
         ++damaged;

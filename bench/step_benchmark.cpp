@@ -56,11 +56,11 @@ using rcdem::Vec3;
 // therefore the compulsory traffic: the least DRAM traffic a step could cause with these layouts.
 //
 // Per local point (concrete network), contact loop (contact_loop.hpp):
-//   point_position0  Vec3                  read             24
-//   constants        LocalPointConstants   read             32
-//   point (state)    LocalPointArrays: 9 Real (fn, fs1, fs2, un, us1, us2, un_max, us_max_sq,
-//                    damage)               read + write     2 x 72
-//                                                           = 200
+//   LocalPointRecord (local_point_records.hpp), two cache lines:
+//     line 1: position at t = 0, LocalPointConstants, damage   read  64 (written back only when
+//             the damage grows: not counted)
+//     line 2: fn, fs1, fs2, un, us1, us2, un_max, us_max_sq    read + write  2 x 64
+//                                                           = 192
 // Per contact (concrete network):
 //   contact loop: particle_a, particle_b   Index x 2 read     16
 //                 point_begin              Index read          8
@@ -130,10 +130,10 @@ struct ByteCount {
 ByteCount count_bytes(const rcdem::Simulation& sim) {
   constexpr double V = sizeof(Vec3), Q = sizeof(Quat), R = sizeof(Real), I = sizeof(Index);
   constexpr double LPS = sizeof(rcdem::LocalPointState);  // plate contacts' state
-  constexpr double PTS = 9 * R;                           // LocalPointArrays, per point
   constexpr double LPC = sizeof(rcdem::LocalPointConstants);
+  constexpr double LINE = sizeof(rcdem::LocalPointRecord) / 2;  // one of a record's two lines
   ByteCount b;
-  b.per_local_point = V + LPC + 2 * PTS;
+  b.per_local_point = LINE + 2 * LINE;
   b.per_contact = (2 * I + I + 2 * 2 * V + 3 * V + 2 * R)  // contact loop
                   + (2 * I + 3 * V)                        // gather: CSR entries, force and torques
                   + 2 * R;                                 // energy ledger

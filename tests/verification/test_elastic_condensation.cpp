@@ -225,10 +225,10 @@ TEST(ElasticCondensation, ContactsNearTheirLimitsGoThroughTheirPoints) {
   for (Index c = 0; c < nc; ++c)
     if (fast.cond.condensed[c])
       for (Index m = sp.contacts.point_begin[c]; m < sp.contacts.point_begin[c + 1]; ++m)
-        damaged_in_condensed += full.cs.point.damage[m] > 0;
+        damaged_in_condensed += full.cs.point[m].damage > 0;
   EXPECT_EQ(damaged_in_condensed, 0);
   Index damaged = 0;
-  for (Real d : full.cs.point.damage) damaged += d > 0;
+  for (const LocalPointRecord& r : full.cs.point.records) damaged += r.damage > 0;
   EXPECT_GT(damaged, 0) << "the kinematics reach some limits";
   EXPECT_EQ(worse_than_rounding(sp, b, full.cs, fast.cs), 0);
   std::printf("[bound] %lld of %lld contacts condensed, %lld points damaged\n",

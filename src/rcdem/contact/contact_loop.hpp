@@ -25,32 +25,31 @@ struct PointSums {
 };
 
 // One local point of a contact, in the contact's frame (see evaluate_contacts): advances its
-// history by the law and returns what it adds to the contact's sums. GCC vectorises the loop over
-// a contact's points for the EL law only; BL's branches keep it scalar, and that is the faster
-// form: a branch-free elastic pass in SIMD lanes (4 or 8) with a scalar pass for the points that
+// history by the law and returns what it adds to the contact's sums. A point is read from and
+// written to its record (local_point_records.hpp). BL's branches keep the loop over a contact's
+// points scalar, and that is the faster form: a branch-free elastic pass in SIMD lanes (4 or 8) with a scalar pass for the points that
 // leave the elastic range was 7-9% slower (bench/RESULTS.md, session 5), as was a full 8-lane
 // pass with idle lanes masked for EL (6%), and in session 13 the law written with selects in one
 // 8- or 4-lane vector per contact (13-17%): every lane then pays both divisions and both roots.
 template <typename Law>
 struct PointUpdate {
   const Law& law;
-  const Vec3* p0;
-  const LocalPointConstants* constants;
-  LocalPointPointers history;
+  LocalPointRecord* records;
   Vec3 xa0;              // A's centre at t = 0
   Vec3 disp0;            // E^T u0
   Eigen::Matrix3d disp;  // E^T (R_B - R_A)
   Eigen::Matrix3d arm;   // E^T (R_A + R_B) / 2
 
   [[gnu::always_inline]] PointSums operator()(Index m) const {
-    const Real rx = p0[m].x() - xa0.x(), ry = p0[m].y() - xa0.y(), rz = p0[m].z() - xa0.z();
+    LocalPointRecord& p = records[m];
+    const Real rx = p.x0 - xa0.x(), ry = p.y0 - xa0.y(), rz = p.z0 - xa0.z();
     // Total displacement in the frame: opening along n, shear along t1, t2.
     const Real u_n = disp0.x() + disp(0, 0) * rx + disp(0, 1) * ry + disp(0, 2) * rz;
     const Real u_1 = disp0.y() + disp(1, 0) * rx + disp(1, 1) * ry + disp(1, 2) * rz;
     const Real u_2 = disp0.z() + disp(2, 0) * rx + disp(2, 1) * ry + disp(2, 2) * rz;
-    PlanePointState s = history.load(m);
-    const LawResult res = law.update(constants[m], s, u_n, PlaneVec{u_1, u_2});  // (1)-(2)
-    history.store(m, s);
+    PlanePointState s = p.state();
+    const LawResult res = law.update(p.constants, s, u_n, PlaneVec{u_1, u_2});  // (1)-(2)
+    p.store(s);
     PointSums out;
     out.point_damage = s.damage;
     // On B; tension (fn > 0) pulls B back towards A.
@@ -165,16 +164,13 @@ template <int kWrite, typename T>
   __builtin_prefetch(hi, kWrite);
 }
 
-// Contact c's points' data, requested while the block forms its frames: the damaged contacts of a
-// block lie scattered among condensed ones, so no hardware prefetcher follows them, and the first
-// touch of each one's points was the point path's largest cost (bench/RESULTS.md, session 11).
+// Contact c's points' records, requested while the block forms its frames: the damaged contacts
+// of a block lie scattered among condensed ones, so no hardware prefetcher follows them, and the
+// first touch of each one's points was the point path's largest cost (bench/RESULTS.md, session
+// 11). For writing: every visit writes the records' second lines.
 [[gnu::always_inline]] inline void prefetch_points(const ContactNetwork& net,
-                                                   const LocalPointPointers& h, Index c) {
-  const Index begin = net.point_begin[c], end = net.point_begin[c + 1];
-  prefetch_elements<0>(net.point_position0.data(), begin, end);
-  prefetch_elements<0>(net.constants.data(), begin, end);
-  for (const Real* a : {h.fn, h.fs1, h.fs2, h.un, h.us1, h.us2, h.un_max, h.us_max_sq, h.damage})
-    prefetch_elements<1>(a, begin, end);
+                                                   const LocalPointRecords& records, Index c) {
+  prefetch_elements<1>(records.data(), net.point_begin[c], net.point_begin[c + 1]);
 }
 
 // The points of contact c in its frame `f`, and what the contact then exerts: the second half.
@@ -185,14 +181,7 @@ template <typename Law, bool kPointsOnly = false>
   const ContactNetwork& net = in.net;
   Real phi_n = 0.0, phi_1 = 0.0, phi_2 = 0.0, mom_n = 0.0, mom_1 = 0.0, mom_2 = 0.0;
   Real damage = 0.0, friction = 0.0, max_damage = 0.0;
-  const PointUpdate<Law> point{law,
-                               net.point_position0.data(),
-                               net.constants.data(),
-                               cs.point.pointers(),
-                               f.xa0,
-                               f.disp0,
-                               f.disp,
-                               f.arm};
+  const PointUpdate<Law> point{law, cs.point.data(), f.xa0, f.disp0, f.disp, f.arm};
   const Index begin = net.point_begin[c], end = net.point_begin[c + 1];
 #pragma omp simd reduction(+ : phi_n, phi_1, phi_2, mom_n, mom_1, mom_2, damage, friction) \
     reduction(max : max_damage)
@@ -273,7 +262,6 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
     CondensedBlock block;
     evaluate_condensed_block(ci, begin, end - begin, cs, block);
     // The contacts that go through their points: every frame first, then every contact's points.
-    const LocalPointPointers history = cs.point.pointers();
     Index visit[CondensedBlock::kSize];
     ContactFrame frames[CondensedBlock::kSize];
     Index visits = 0;
@@ -283,7 +271,7 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
       cond->condensed[c] = keep;
       if (keep) continue;
       if (was_condensed) evaluate_contact<Law, true>(law, *previous, cs, cond, c);
-      prefetch_points(in.net, history, c);
+      prefetch_points(in.net, cs.point, c);
       contact_frame(in, cs, cond, c, frames[visits]);
       visit[visits++] = c;
     }

@@ -14,7 +14,7 @@ Vec3 any_perpendicular(const Vec3& n) {
 void ContactState::init(const ContactNetwork& net, const std::vector<Vec3>& x,
                         const std::vector<Vec3>* anchor0, const std::vector<Vec3>* axis0) {
   const auto nc = static_cast<std::size_t>(net.contact_count());
-  point.assign(static_cast<std::size_t>(net.point_count()));
+  point.init(net);
   normal.resize(nc);
   for (std::size_t c = 0; c < nc; ++c) {
     if (anchor0) {

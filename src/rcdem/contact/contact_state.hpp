@@ -4,7 +4,7 @@
 // contact's energy terms), all as flat arrays.
 #include <vector>
 
-#include "rcdem/contact/local_point_arrays.hpp"
+#include "rcdem/contact/local_point_records.hpp"
 #include "rcdem/core/types.hpp"
 #include "rcdem/state/contact_network.hpp"
 
@@ -14,7 +14,7 @@ namespace rcdem {
 Vec3 any_perpendicular(const Vec3& n);
 
 struct ContactState {
-  LocalPointArrays point;    // per local point, frame components
+  LocalPointRecords point;   // per local point, frame components
   std::vector<Vec3> normal;  // per contact: unit A -> B at the last evaluation
   // Per contact: the first axis t1 of the contact plane's frame (t2 = n x t1). The frame turns
   // with the contact (SPEC 4), and every point's shear vectors fs, us are kept as components

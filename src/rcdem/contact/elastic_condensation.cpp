@@ -72,7 +72,7 @@ ElasticCondensation ElasticCondensation::build(const ContactNetwork& net,
   return e;
 }
 
-void ElasticCondensation::reset_flags(const ContactNetwork& net, const std::vector<Real>& damage) {
+void ElasticCondensation::reset_flags(const ContactNetwork& net, const PointDamage& damage) {
   for (Index c = 0; c < net.contact_count(); ++c) {
     bool all_intact = eligible[static_cast<std::size_t>(c)] != 0;
     for (Index m = net.point_begin[c]; m < net.point_begin[c + 1]; ++m)

@@ -68,7 +68,7 @@ struct ElasticCondensation {
   // From the network's points and the particles' centres at t = 0; every contact intact.
   static ElasticCondensation build(const ContactNetwork& net, const std::vector<Vec3>& x0);
   // After a restart: intact from the points' damage, nothing condensed.
-  void reset_flags(const ContactNetwork& net, const std::vector<Real>& damage);
+  void reset_flags(const ContactNetwork& net, const PointDamage& damage);
   Index condensed_count() const;
   Index condensed_point_count(const ContactNetwork& net) const;  // their local points
 };

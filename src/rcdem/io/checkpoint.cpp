@@ -355,7 +355,7 @@ struct CheckpointAccess {
     ar.table(name + ".points", static_cast<std::size_t>(c.point.size()), 9,
              [&](auto& r, std::size_t i) {
                const auto m = static_cast<Index>(i);
-               for (auto* a : c.point.arrays()) r.f((*a)[m]);
+               c.point.for_each_history(m, [&](auto& v) { r.f(v); });
              });
   }
 
@@ -518,7 +518,7 @@ struct CheckpointAccess {
   // condensed (their histories were complete when saved).
   static void after_restore(Simulation& s) {
     if (!s.condensation_.sums.empty())
-      s.condensation_.reset_flags(s.specimen_.contacts, s.contacts_.point.damage);
+      s.condensation_.reset_flags(s.specimen_.contacts, s.contacts_.point.damage());
   }
   template <typename Ar>
   static void load_parts(Ar& ar, const CheckpointParts& p) {

@@ -11,7 +11,7 @@ CrackRecord::CrackRecord(const Simulation& sim)
     : broken_(sim.point_damage().size(), std::uint8_t{0}) {}
 
 void CrackRecord::update(const Simulation& sim, Real deflection, Real load) {
-  const std::vector<Real>& damage = sim.point_damage();  // no catch-up needed
+  const PointDamage damage = sim.point_damage();  // no catch-up needed
   const ContactNetwork& net = sim.specimen().contacts;
   for (std::size_t m = 0; m < damage.size(); ++m) {
     if (broken_[m] || damage[m] < 1.0) continue;

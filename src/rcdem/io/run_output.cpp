@@ -12,7 +12,7 @@ namespace fs = std::filesystem;
 
 std::vector<Real> particle_damage(const Simulation& sim) {
   const ContactNetwork& net = sim.specimen().contacts;
-  const std::vector<Real>& damage = sim.point_damage();  // current without a catch-up
+  const PointDamage damage = sim.point_damage();  // current without a catch-up
   const auto n = static_cast<std::size_t>(sim.bodies().size());
   std::vector<Real> sum(n, 0.0), area(n, 0.0);
   for (Index c = 0; c < net.contact_count(); ++c) {
@@ -143,7 +143,7 @@ void SnapshotWriter::write(const Simulation& sim) {
   const ContactNetwork& net = sim.specimen().contacts;
   // Read once: every call of contacts() checks for condensed contacts to bring up to date.
   const ContactState& cs = sim.contacts();
-  const auto& pts = cs.point;
+  const PointDamage point_damage = cs.point.damage();
   UnstructuredGrid g;
   std::vector<Real> damage, opening;
   std::vector<std::uint8_t> broken;
@@ -157,9 +157,9 @@ void SnapshotWriter::write(const Simulation& sim) {
     Real d = 0.0, a = 0.0;
     bool all_broken = true;
     for (Index m = net.point_begin[c]; m < net.point_begin[c + 1]; ++m) {
-      d += pts.damage[m] * net.point_area[m];
+      d += point_damage[static_cast<std::size_t>(m)] * net.point_area[m];
       a += net.point_area[m];
-      all_broken &= pts.damage[m] >= 1.0;
+      all_broken &= point_damage[static_cast<std::size_t>(m)] >= 1.0;
       if (m == net.point_begin[c]) continue;  // the centroid is not a polygon vertex
       const PointKinematics k =
           point_kinematics(net.point_position0[m], b.position[ia], b.position0[ia], ra,
@@ -169,7 +169,7 @@ void SnapshotWriter::write(const Simulation& sim) {
     }
     g.add_polygon(ids);
     damage.push_back(a > 0.0 ? d / a : 0.0);
-    opening.push_back(pts[net.point_begin[c]].un);
+    opening.push_back(cs.point[net.point_begin[c]].un);
     broken.push_back(all_broken ? 1 : 0);
   }
   g.add_cell_data("damage", damage);

@@ -561,14 +561,14 @@ Energy Simulation::energy() const {
 
 Index Simulation::damaged_points() const {
   Index n = 0;
-  for (Real d : contacts_.point.damage) n += (d > 0.0 && d < 1.0);
+  for (const LocalPointRecord& r : contacts_.point.records) n += (r.damage > 0.0 && r.damage < 1.0);
   return n;
 }
 
 Index Simulation::broken_interface_points() const {
   Index n = 0;
   for (const auto& st : interface_states_)
-    for (Real d : st.point.damage) n += (d >= 1.0);
+    for (const LocalPointRecord& r : st.point.records) n += (r.damage >= 1.0);
   return n;
 }
 
@@ -586,7 +586,7 @@ Real Simulation::max_axial_force() const {
 
 Index Simulation::broken_points() const {
   Index n = 0;
-  for (Real d : contacts_.point.damage) n += (d >= 1.0);
+  for (const LocalPointRecord& r : contacts_.point.records) n += (r.damage >= 1.0);
   return n;
 }
 

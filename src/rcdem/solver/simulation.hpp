@@ -109,7 +109,7 @@ class Simulation {
 
   // Every concrete local point's damage D, current without a catch-up (a condensed contact's points
   // are intact: their stale histories hold D = 0, as the current ones would).
-  const std::vector<Real>& point_damage() const { return contacts_.point.damage; }
+  PointDamage point_damage() const { return contacts_.point.damage(); }
   Index damaged_points() const;  // 0 < D < 1, concrete contacts
   Index broken_points() const;   // D = 1, concrete contacts
   Index broken_interface_points() const;
