@@ -184,8 +184,7 @@ TEST(ElasticCondensation, CondensedContactGivesItsPointsForceAndTorques) {
 TEST(ElasticCondensation, DifferenceOfTwoRotationsHasHalfItsFrobeniusNormSquared) {
   Rng rng(11);
   const auto random_rotation = [&](Real max_angle) {
-    const Vec3 axis =
-        Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)).normalized();
+    const Vec3 axis = Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)).normalized();
     return Eigen::Matrix3d(Eigen::AngleAxis<Real>(rng.uniform(0, max_angle), axis));
   };
   for (const Real scale : {1e-6, 1e-3, 0.3, 3.0}) {

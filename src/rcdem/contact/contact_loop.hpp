@@ -27,10 +27,11 @@ struct PointSums {
 // One local point of a contact, in the contact's frame (see evaluate_contacts): advances its
 // history by the law and returns what it adds to the contact's sums. A point is read from and
 // written to its record (local_point_records.hpp). BL's branches keep the loop over a contact's
-// points scalar, and that is the faster form: a branch-free elastic pass in SIMD lanes (4 or 8) with a scalar pass for the points that
-// leave the elastic range was 7-9% slower (bench/RESULTS.md, session 5), as was a full 8-lane
-// pass with idle lanes masked for EL (6%), and in session 13 the law written with selects in one
-// 8- or 4-lane vector per contact (13-17%): every lane then pays both divisions and both roots.
+// points scalar, and that is the faster form: a branch-free elastic pass in SIMD lanes (4 or 8)
+// with a scalar pass for the points that leave the elastic range was 7-9% slower (bench/RESULTS.md,
+// session 5), as was a full 8-lane pass with idle lanes masked for EL (6%), and in session 13 the
+// law written with selects in one 8- or 4-lane vector per contact (13-17%): every lane then pays
+// both divisions and both roots.
 template <typename Law>
 struct PointUpdate {
   const Law& law;

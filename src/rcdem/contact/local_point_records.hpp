@@ -6,7 +6,7 @@
 // The damaged contacts of a cracked beam lie scattered among condensed ones, so that fetch, not
 // arithmetic, was the point path's largest cost: 1.07x steps/s on the cracked AN4 beam at 1
 // thread, 1.05x at 2 (bench/RESULTS.md, session 16).
-#include <cstdint>
+#include <cstddef>
 #include <vector>
 
 #include "rcdem/contact/laws/local_point_state.hpp"
@@ -19,11 +19,11 @@ namespace rcdem {
 // stays clean in most visits and is not written back). Line 2: the history every visit writes.
 // Shear vectors are their components along the contact frame's axes (t1, t2).
 struct alignas(64) LocalPointRecord {
-  Real x0, y0, z0;                      // the point at t = 0 (ContactNetwork::point_position0)
-  LocalPointConstants constants;        // (3)-(6) (ContactNetwork::constants)
-  Real damage;                          // D (S4)
-  Real fn, fs1, fs2, un, us1, us2;      // forces and accumulated displacements (SPEC 4-5)
-  Real un_max, us_max_sq;               // the maxima that drive D (S3)
+  Real x0, y0, z0;                  // the point at t = 0 (ContactNetwork::point_position0)
+  LocalPointConstants constants;    // (3)-(6) (ContactNetwork::constants)
+  Real damage;                      // D (S4)
+  Real fn, fs1, fs2, un, us1, us2;  // forces and accumulated displacements (SPEC 4-5)
+  Real un_max, us_max_sq;           // the maxima that drive D (S3)
 
   [[gnu::always_inline]] PlanePointState state() const {
     PlanePointState s;
@@ -72,15 +72,15 @@ struct LocalPointRecords {
   // Point m with its shear vectors as frame components (t1, t2, 0) (ContactState::to_world turns
   // them into world vectors).
   LocalPointState operator[](Index m) const {
-    const LocalPointRecord& r = records[static_cast<std::size_t>(m)];
+    const PlanePointState p = records[static_cast<std::size_t>(m)].state();
     LocalPointState s;
-    s.fn = r.fn;
-    s.fs = Vec3(r.fs1, r.fs2, 0.0);
-    s.un = r.un;
-    s.us = Vec3(r.us1, r.us2, 0.0);
-    s.un_max = r.un_max;
-    s.us_max_sq = r.us_max_sq;
-    s.damage = r.damage;
+    s.fn = p.fn;
+    s.fs = Vec3(p.fs.x, p.fs.y, 0.0);
+    s.un = p.un;
+    s.us = Vec3(p.us.x, p.us.y, 0.0);
+    s.un_max = p.un_max;
+    s.us_max_sq = p.us_max_sq;
+    s.damage = p.damage;
     return s;
   }
 

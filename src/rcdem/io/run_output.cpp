@@ -91,7 +91,7 @@ void SnapshotWriter::write_bars(const Simulation& sim, const std::string& stamp,
   g.add_cell_data("bending_moment", moment);
   g.add_cell_data("yielded", yielded);
   g.add_cell_data("bar", bar);
-    emit(g, "bars", stamp, sim.time(), enc, bar_series_);
+  emit(g, "bars", stamp, sim.time(), enc, bar_series_);
 }
 
 // snapshots/KIND_STEP.vtu, and KIND.pvd listing the series so far.
@@ -136,7 +136,7 @@ void SnapshotWriter::write(const Simulation& sim) {
     std::vector<Real> damage = particle_damage(sim);
     damage.resize(nc);
     g.add_point_data("damage", damage);
-        emit(g, "particles", stamp, sim.time(), enc, particle_series_);
+    emit(g, "particles", stamp, sim.time(), enc, particle_series_);
   }
   if (!sim.nodes().empty()) write_bars(sim, stamp, enc);
   if (!facets_) return;
@@ -175,7 +175,7 @@ void SnapshotWriter::write(const Simulation& sim) {
   g.add_cell_data("damage", damage);
   g.add_cell_data("opening", opening);
   g.add_cell_data("broken", broken);
-    emit(g, "facets", stamp, sim.time(), enc, facet_series_);
+  emit(g, "facets", stamp, sim.time(), enc, facet_series_);
 }
 
 History::History(const Simulation& sim, std::string control) : control_(std::move(control)) {
