@@ -22,5 +22,6 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 
 BUILD_DIR=${BUILD_DIR:-build}
-cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+# The portable reference build (CMakePresets.json "release"); RCDEM_NATIVE=ON for -march=native.
+cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release -DRCDEM_NATIVE="${RCDEM_NATIVE:-OFF}" >/dev/null
 cmake --build "$BUILD_DIR" -j "$(nproc)"

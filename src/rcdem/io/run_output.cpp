@@ -30,26 +30,6 @@ std::vector<Real> particle_damage(const Simulation& sim) {
   return sum;
 }
 
-Vec3 face_strains(const Simulation& sim) {
-  // Like gauges on the specimen: the mean displacement of the particles on each face, along the
-  // face's normal; high face minus low face, over the specimen's length.
-  const BoundaryFaces& f = sim.specimen().boundary;
-  const Bodies& b = sim.bodies();
-  Real sum[6] = {0, 0, 0, 0, 0, 0}, area[6] = {0, 0, 0, 0, 0, 0};
-  for (Index k = 0; k < f.size(); ++k) {
-    const int face = f.face[k];
-    const Index i = f.particle[k];
-    sum[face] += f.area[k] * (b.position[i][face / 2] - b.position0[i][face / 2]);
-    area[face] += f.area[k];
-  }
-  const Vec3 size = sim.specimen().geometry.size();
-  Vec3 e = Vec3::Zero();
-  for (int a = 0; a < 3; ++a)
-    if (area[2 * a] > 0.0 && area[2 * a + 1] > 0.0)
-      e[a] = (sum[2 * a + 1] / area[2 * a + 1] - sum[2 * a] / area[2 * a]) / size[a];
-  return e;
-}
-
 void SnapshotWriter::write_bars(const Simulation& sim, const std::string& stamp, VtuEncoding enc) {
   // Each cylinder as a line between its two ends, with what its nodes carry (the larger of its
   // two nodes' values; an end cylinder has one node).
@@ -178,7 +158,8 @@ void SnapshotWriter::write(const Simulation& sim) {
   emit(g, "facets", stamp, sim.time(), enc, facet_series_);
 }
 
-History::History(const Simulation& sim, std::string control) : control_(std::move(control)) {
+History::History(const Simulation& sim, std::string control)
+    : control_(std::move(control)), gauges_(sim.specimen()) {
   columns_ = {"step", "time_s"};
   for (const auto& p : sim.plates()) {
     columns_.push_back(p.name + "_displacement_m");
@@ -189,7 +170,8 @@ History::History(const Simulation& sim, std::string control) : control_(std::mov
     columns_.push_back(b.name + "_pull_force_N");
   }
   for (const char* c :
-       {"strain_x", "strain_y", "strain_z", "load_N", "kinetic_J", "strain_J",
+       {"strain_x", "strain_y", "strain_z", "interior_strain_x", "interior_strain_y",
+        "interior_strain_z", "load_N", "kinetic_J", "strain_J",
         "dissipated_damage_J", "dissipated_friction_J", "dissipated_damping_J", "external_work_J",
         "energy_balance_error", "damaged_points", "broken_points"})
     columns_.emplace_back(c);
@@ -210,8 +192,10 @@ void History::record(const Simulation& sim) {
     row.push_back(b.displacement);
     row.push_back(b.load());
   }
-  const Vec3 strain = face_strains(sim);
-  row.insert(row.end(), {strain.x(), strain.y(), strain.z()});
+  const Vec3 strain = gauges_.face(sim.bodies());
+  const Vec3 interior = gauges_.interior(sim.bodies());
+  row.insert(row.end(), {strain.x(), strain.y(), strain.z(), interior.x(), interior.y(),
+                         interior.z()});
   const Plate* control = sim.find_plate(control_);
   const PulledBar* pulled = sim.find_pulled_bar(control_);
   const Energy& e = sim.energy();

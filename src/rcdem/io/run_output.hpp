@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "rcdem/io/strain_gauges.hpp"
 #include "rcdem/io/vtu_writer.hpp"
 #include "rcdem/solver/simulation.hpp"
 
@@ -35,18 +36,16 @@ class History {
   std::size_t rows() const { return rows_.size(); }
   const std::vector<std::string>& columns() const { return columns_; }
   const std::vector<std::vector<double>>& data() const { return rows_; }
+  const StrainGauges& gauges() const { return gauges_; }
 
  private:
   friend struct CheckpointAccess;
   std::string control_;
+  StrainGauges gauges_;
   bool bars_ = false;
   std::vector<std::string> columns_;
   std::vector<std::vector<double>> rows_;
 };
-
-// Mean strains of the specimen along x, y, z from the displacements of its boundary particles
-// (area-weighted per face): what gauges glued on the faces would read.
-Vec3 face_strains(const Simulation& sim);
 
 // Per-particle damage for display: the area-weighted mean D over the particle's local points.
 std::vector<Real> particle_damage(const Simulation& sim);

@@ -187,6 +187,7 @@ RunSummary run_scenario(const Scenario& sc, const fs::path& out, const RunOption
       j["command"] = opt.command;
       j["rcdem_version"] = version;
       j["git_hash"] = git;
+      j["build"] = build_flavour();
       j["threads"] = thread_count();
       j["start_time"] = iso_now();
       j["end_time"] = nullptr;
@@ -199,6 +200,7 @@ RunSummary run_scenario(const Scenario& sc, const fs::path& out, const RunOption
     }
     j["rcdem_version"] = version;
     j["git_hash"] = git;
+    j["build"] = build_flavour();
     j["threads"] = thread_count();
     j["exit_state"] = "running";
     j["end_time"] = nullptr;
@@ -206,6 +208,7 @@ RunSummary run_scenario(const Scenario& sc, const fs::path& out, const RunOption
                              {"end_time", nullptr},
                              {"rcdem_version", version},
                              {"git_hash", git},
+                             {"build", build_flavour()},
                              {"threads", thread_count()},
                              {"command", opt.command},
                              {"resumed_from", nullptr},
@@ -511,12 +514,23 @@ RunSummary run_scenario(const Scenario& sc, const fs::path& out, const RunOption
     j["first_cracking"] = cracks.first_cracking();
     j["local_points"] = sim.specimen().contacts.point_count();
     j["specimen"] = io::specimen_summary(sc, sim.specimen());
+    {
+      const io::StrainGauges& g = history.gauges();
+      const Vec3& l = g.gauge_length();
+      nlohmann::ordered_json areas = nlohmann::ordered_json::array();
+      for (int f = 0; f < 6; ++f) areas.push_back(g.face_area(f));
+      j["gauges"] = {{"face_gauge_length_m", {l.x(), l.y(), l.z()}},
+                     {"face_area_m2", areas},
+                     {"interior_particles", g.interior_particles()}};
+    }
     // Wall-clock figures cover every session up to the state each handed on (a resumed run:
     // up to its checkpoint), so they may differ between otherwise identical runs.
     const double loop_s = loop_before + std::chrono::duration<double>(end - loop_start).count();
     j["loop_seconds"] = loop_s;
     j["steps_per_second"] = loop_s > 0.0 ? static_cast<double>(r.steps) / loop_s : 0.0;
     j["seconds"] = wall;
+    j["rcdem"] = {{"version", build_version()}, {"git_hash", build_git_hash()},
+                  {"build", build_flavour()}};
     io::write_file_atomically(out / "summary.json", j.dump(2) + "\n");
     io::run_plot_tool("plot_history.py", out);  // load_displacement.png
     r.history_columns = history.columns();
