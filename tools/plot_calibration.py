@@ -29,7 +29,14 @@ for col, mode in enumerate(("compression", "tension")):
     c = read(path)
     strain_permille = [1e3 * e for e in c["strain"]]
     ax = axes[0][col]
-    ax.plot(strain_permille, [s / 1e6 for s in c["stress_Pa"]], "k-")
+    ax.plot(strain_permille, [s / 1e6 for s in c["stress_Pa"]], "k-", label="face gauges")
+    if "interior_strain" in c:
+        # E and nu come from this gauge (docs/model.md 7); up to the peak only, since a crack
+        # outside the central region unloads it.
+        peak = max(range(len(c["stress_Pa"])), key=lambda i: c["stress_Pa"][i])
+        ax.plot([1e3 * e for e in c["interior_strain"][:peak + 1]],
+                [s / 1e6 for s in c["stress_Pa"][:peak + 1]], "C1--", label="interior gauge")
+        ax.legend()
     ax.set_xlabel("axial strain (‰)")
     ax.set_ylabel("axial stress (MPa)")
     ax.set_title(f"uniaxial {mode}: peak {max(c['stress_Pa']) / 1e6:.2f} MPa")

@@ -112,10 +112,11 @@ nlohmann::ordered_json pair_json(const Pair& p) {
   j["nu_at_40_percent_compression"] = p.compression.nu_at_40;
   j["nu_from_tension"] = p.tension.nu;
   j["E_from_tension"] = p.tension.E;
-  // The interior gauge (io/strain_gauges.hpp) beside the face gauge the calibration uses.
-  j["E_interior_gauge"] = p.compression.E_interior;
-  j["nu_interior_gauge"] = p.compression.nu_interior;
-  j["E_interior_gauge_tension"] = p.tension.E_interior;
+  // E and nu above come from the interior gauge (io/strain_gauges.hpp); the face gauges beside.
+  j["gauge"] = "interior";
+  j["E_face_gauge"] = p.compression.E_face_gauge;
+  j["nu_face_gauge"] = p.compression.nu_face_gauge;
+  j["E_face_gauge_tension"] = p.tension.E_face_gauge;
   j["face_gauge_length_m"] = p.compression.gauge_length;
   j["loaded_area_m2"] = p.compression.loaded_area;
   j["kinetic_over_strain_at_peak_compression"] = p.compression.kinetic_over_strain_at_peak;

@@ -85,9 +85,9 @@ void analyse_curve(UniaxialResult& r) {
     // strength, so at 40% the ratio measures microcracking (0.38 on a 60 mm cube, 0.15 at 10%).
     strains_at_fraction(r, peak, 0.1, interior, strain, lateral);
     const Real nu = strain > 0.0 ? -lateral / strain : 0.0;
-    (interior ? r.E_interior : r.E) = E;
-    (interior ? r.nu_interior : r.nu) = nu;
-    if (!interior) r.nu_at_40 = nu_at_40;
+    (interior ? r.E : r.E_face_gauge) = E;
+    (interior ? r.nu : r.nu_face_gauge) = nu;
+    if (interior) r.nu_at_40 = nu_at_40;
   }
 }
 

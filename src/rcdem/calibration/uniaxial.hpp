@@ -2,8 +2,8 @@
 // The uniaxial compression and tension tests of the calibration (paper 3, Figure 7; SPEC 9), set
 // up on a cube from a base scenario (its generation and contact parameters), run, and read:
 // E (secant at 40% of the peak), nu (lateral over axial strain at 10% of the peak, where the
-// response is still elastic), the strength, and the
-// stress-strain and damage-strain curves.
+// response is still elastic), both from the interior gauge, the strength, and the stress-strain
+// (face gauge) and damage-strain curves.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -40,11 +40,12 @@ struct UniaxialResult {
   UniaxialMode mode;
   Real strength = 0.0;  // peak stress [Pa]
   Real strain_at_peak = 0.0;
+  // E and nu from the interior gauge: the bulk material, whatever the cube's size (docs/model.md 7).
   Real E = 0.0;         // secant modulus at 40% of the peak [Pa]
   Real nu = 0.0;        // -lateral / axial strain at 10% of the peak (elastic range)
   Real nu_at_40 = 0.0;  // the same ratio at 40% of the peak (includes microcracking)
-  Real E_interior = 0.0;   // E and nu read the same way from the interior gauge
-  Real nu_interior = 0.0;
+  Real E_face_gauge = 0.0;  // E and nu read the same way from the face gauges
+  Real nu_face_gauge = 0.0;
   Real loaded_area = 0.0;  // the platen face's boundary area [m^2]
   Real gauge_length = 0.0; // the axial face gauge's length [m]
   Real kinetic_over_strain_at_peak = 0.0;
