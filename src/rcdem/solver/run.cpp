@@ -519,9 +519,11 @@ RunSummary run_scenario(const Scenario& sc, const fs::path& out, const RunOption
       const Vec3& l = g.gauge_length();
       nlohmann::ordered_json areas = nlohmann::ordered_json::array();
       for (int f = 0; f < 6; ++f) areas.push_back(g.face_area(f));
-      j["gauges"] = {{"face_gauge_length_m", {l.x(), l.y(), l.z()}},
-                     {"face_area_m2", areas},
-                     {"interior_particles", g.interior_particles()}};
+      nlohmann::ordered_json gauges = nlohmann::ordered_json::object();
+      gauges["face_gauge_length_m"] = {l.x(), l.y(), l.z()};
+      gauges["face_area_m2"] = areas;
+      gauges["interior_particles"] = g.interior_particles();
+      j["gauges"] = gauges;
     }
     // Wall-clock figures cover every session up to the state each handed on (a resumed run:
     // up to its checkpoint), so they may differ between otherwise identical runs.
