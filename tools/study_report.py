@@ -137,13 +137,27 @@ def behaviour(d, p):
             "class": "ductile" if recovers else "brittle"}
 
 
-def initial_stiffness(d, p, p_ref):
+# K0 is read only from rows where the kinetic energy is below this fraction of the strain energy:
+# while the beam still rings from the start of loading, load over deflection is not a stiffness.
+K0_KINETIC_LIMIT = 0.05
+
+
+def quasi_static_rows(case_dir):
+    """Per history row: kinetic energy below K0_KINETIC_LIMIT of the strain energy."""
+    rows = read_csv(os.path.join(case_dir, "history.csv"))
+    return np.array([float(r["strain_J"]) > 0
+                     and float(r["kinetic_J"]) < K0_KINETIC_LIMIT * float(r["strain_J"])
+                     for r in rows])
+
+
+def initial_stiffness(d, p, p_ref, quasi_static):
     """Least-squares slope of load on deflection between 10% and 40% of p_ref (the load at which
-    the first local point broke: still elastic), through the first crossing of 40%."""
+    the first local point broke: still elastic), through the first crossing of 40%, over the rows
+    that are quasi-static (kinetic < 5% of strain energy). None when fewer than 3 rows qualify."""
     if p_ref is None or p_ref <= 0:
         p_ref = float(np.max(p))
     end = int(np.argmax(p >= 0.4 * p_ref))
-    sel = [i for i in range(end + 1) if 0.1 * p_ref <= p[i] <= 0.4 * p_ref]
+    sel = [i for i in range(end + 1) if 0.1 * p_ref <= p[i] <= 0.4 * p_ref and quasi_static[i]]
     if len(sel) < 3:
         return None
     return float(np.polyfit(d[sel], p[sel], 1)[0])
@@ -285,7 +299,8 @@ def main(study):
         beh["peak_load_N"] = summary.get("peak_load_N", beh["peak_load_N"])
         beh["deflection_at_peak_m"] = abs(summary.get("displacement_at_peak_m", beh["deflection_at_peak_m"]))
         first = summary.get("first_cracking") or {}
-        k0 = initial_stiffness(d, p, first.get("load_N") or beh["cracking_load_N"])
+        k0 = initial_stiffness(d, p, first.get("load_N") or beh["cracking_load_N"],
+                               quasi_static_rows(case_dir))
         kt, kb = timoshenko_stiffness(r["model"])
         # The supports are 20 mm wide: once the beam bends it bears on their inner edges.
         kt_inner, _ = timoshenko_stiffness(r["model"], SPAN - 0.020)
@@ -409,7 +424,9 @@ def main(study):
               "Ductile: past twice the cracking deflection the load rises above the cracking load again, "
               "or it never drops that much (no drop); brittle: it does not. "
               "Initial stiffness K0: least-squares slope between 10% and 40% of the load at which the first "
-              "local point broke; "
+              "local point broke, over the history rows where the kinetic energy is below "
+              f"{100 * K0_KINETIC_LIMIT:g}% of the strain energy (– where fewer than 3 rows qualify: the beam "
+              "still rings from the start of loading when it cracks); "
               "Timoshenko: simply supported, central load, uncracked transformed section, "
               f"E = {E_CONCRETE / 1e9:.2f} GPa, ν = {NU_CONCRETE}, κ = 5/6.", "",
               "| case | cracking load (kN) | peak (kN) | δ at peak (mm) | reactions' peak (kN) at δ (mm) "
