@@ -12,7 +12,7 @@ source gives the same bits on any x86-64 machine with the same compiler. A run b
 usage:
   check_golden.py RCDEM SOURCE_DIR [--case NAME ...]             compare (exit 1 on a mismatch)
   check_golden.py RCDEM SOURCE_DIR --update [--case NAME ...]    rewrite the references on purpose
-  check_golden.py RCDEM SOURCE_DIR --case NAME --set KEY=FACTOR  scale one scenario number (a
+  check_golden.py RCDEM SOURCE_DIR --case NAME --set KEY=FACTOR  scale scenario numbers (a
                                                                  sensitivity check: must fail)
 """
 import argparse
@@ -58,8 +58,9 @@ def toml_dump(d, prefix=""):
     return "\n".join(x for x in out if x != "")
 
 
-def perturbed_scenario(source, scenario, key, factor, tmp):
-    """The scenario with its includes merged in and one number scaled, written to tmp."""
+def perturbed_scenario(source, scenario, scalings, tmp):
+    """The scenario with its includes merged in and numbers scaled ([(key, factor)]), written to
+    tmp."""
     def load(path):
         with open(path, "rb") as f:
             d = tomllib.load(f)
@@ -70,11 +71,12 @@ def perturbed_scenario(source, scenario, key, factor, tmp):
         return merged
 
     d = load(os.path.join(source, scenario))
-    node = d
-    parts = key.split(".")
-    for p in parts[:-1]:
-        node = node[p]
-    node[parts[-1]] = node[parts[-1]] * factor
+    for key, factor in scalings:
+        node = d
+        parts = key.split(".")
+        for p in parts[:-1]:
+            node = node[p]
+        node[parts[-1]] = node[parts[-1]] * factor
     path = os.path.join(tmp, "perturbed.toml")
     with open(path, "w") as f:
         f.write(toml_dump(d) + "\n")
@@ -182,7 +184,8 @@ def main():
     ap.add_argument("source")
     ap.add_argument("--case", action="append", help="only these cases (default: all)")
     ap.add_argument("--update", action="store_true", help="rewrite the references")
-    ap.add_argument("--set", help="KEY=FACTOR: scale one number of the scenario (sensitivity)")
+    ap.add_argument("--set", action="append",
+                    help="KEY=FACTOR: scale one number of the scenario (sensitivity; repeatable)")
     ap.add_argument("--keep", help="run in this directory instead of a temporary one")
     a = ap.parse_args()
     rcdem, source = os.path.abspath(a.rcdem), os.path.abspath(a.source)
@@ -211,8 +214,8 @@ def main():
             continue
         scenario = None
         if a.set:
-            key, factor = a.set.split("=")
-            scenario = perturbed_scenario(source, case["scenario"], key, float(factor), tmp)
+            scalings = [(k, float(f)) for k, f in (item.split("=") for item in a.set)]
+            scenario = perturbed_scenario(source, case["scenario"], scalings, tmp)
         out = run_case(rcdem, source, case, tmp, scenario)
         v, xs, curve = measure(case, out)
         if a.update:
