@@ -6,6 +6,7 @@
 #include <limits>
 #include <sstream>
 
+#include "rcdem/calibration/strength_secant.hpp"
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
 #include "rcdem/io/atomic_file.hpp"
@@ -170,6 +171,7 @@ CalibrationResult calibrate(const Scenario& base_in, const CalibrationOptions& o
     // proportional update can then walk away from the best point it passed.
     Real best_misfit = std::numeric_limits<Real>::infinity();
     int best_iteration = 0;
+    StrengthSecant strengths;
     for (int it = 0; it < opt.max_iterations; ++it) {
       pair = run_pair(base, search, out / fmt::format("iteration_{:02d}", it));
       const MacroProperties m = pair.macro();
@@ -193,7 +195,16 @@ CalibrationResult calibrate(const Scenario& base_in, const CalibrationOptions& o
         result.converged = true;
         break;
       }
-      base.contact = update_parameters(base.contact, m, t);
+      const ContactParameters before = base.contact;
+      base.contact = update_parameters(before, m, t);
+      const Eigen::Vector2d next = strengths.step(
+          {before.tau, before.sigma_nt}, {m.sigma_c, m.sigma_t}, {t.sigma_c, t.sigma_t});
+      base.contact.tau = next[0];
+      base.contact.sigma_nt = next[1];
+      const Eigen::Matrix2d& jac = strengths.jacobian();
+      nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+      for (int r = 0; r < 2; ++r) rows.push_back(nlohmann::ordered_json::array({jac(r, 0), jac(r, 1)}));
+      history.back()["strength_jacobian"] = rows;
     }
     j["iterations"] = history;
     j["converged"] = result.converged;

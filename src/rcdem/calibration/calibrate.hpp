@@ -35,7 +35,8 @@ struct CalibrationResult {
 // The parameter update of one search iteration (exposed for tests): the elastic pair from the
 // closed-form relations of a random isotropic network of normal and shear springs,
 // nu = (1 - alpha) / (4 + alpha) and E ~ E_bar (2 + 3 alpha) / (4 + alpha), each corrected by the
-// ratio measured on this packing; the strengths in proportion to their misfit.
+// ratio measured on this packing; the strengths in proportion to their misfit (the search then
+// replaces tau and sigma_nt by StrengthSecant's step, calibration/strength_secant.hpp).
 ContactParameters update_parameters(const ContactParameters& p, const MacroProperties& measured,
                                     const MacroProperties& target);
 
