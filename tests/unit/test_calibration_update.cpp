@@ -72,13 +72,17 @@ TEST(StrengthSecant, ReachesTheTargetWhereTheProportionalUpdateDiverges) {
   Eigen::Vector2d x = start;
   for (int it = 0; it < 6; ++it) x = x.cwiseProduct(target.cwiseQuotient(model_strengths(x)));
   EXPECT_GT(worst(model_strengths(x), target), worst(model_strengths(start), target));
-  // Secant.
-  StrengthSecant secant;
+  // Secant, started from the proportional guess: it learns the sign from its first step.
+  StrengthSecant secant(Eigen::Matrix2d::Identity());
   x = start;
   int it = 0;
   for (; it < 8 && worst(model_strengths(x), target) > 0.005; ++it)
     x = secant.step(x, model_strengths(x), target);
   EXPECT_LE(it, 5);
+  EXPECT_LT(worst(model_strengths(x), target), 0.005);
+  // Started from the measured prior (the default), one step.
+  StrengthSecant informed;
+  x = informed.step(start, model_strengths(start), target);
   EXPECT_LT(worst(model_strengths(x), target), 0.005);
   // What it learnt along its steps has the model's sign: sigma_t falls as sigma_nt rises.
   EXPECT_LT(secant.jacobian()(1, 1), 0.0);

@@ -19,10 +19,10 @@ Eigen::Vector2d StrengthSecant::step(const Eigen::Vector2d& tau_sigma_nt,
   y_previous_ = y;
   has_previous_ = true;
   const Eigen::Vector2d misfit = target.array().log() - y.array();
-  // A secant that has lost its rank (|det J| small against its entries) falls back to the
-  // proportional guess for this step, and is rebuilt from it.
+  // A secant that has lost its rank (|det J| small against its entries) falls back to the prior
+  // for this step, and is rebuilt from it.
   const Real scale = j_.cwiseAbs().maxCoeff();
-  if (std::abs(j_.determinant()) < 1e-3 * scale * scale) j_ = Eigen::Matrix2d::Identity();
+  if (std::abs(j_.determinant()) < 1e-3 * scale * scale) j_ = prior_;
   Eigen::Vector2d dx = j_.partialPivLu().solve(misfit);
   const Real limit = std::log(kMaxFactor);
   for (int k = 0; k < 2; ++k) dx[k] = std::clamp(dx[k], -limit, limit);

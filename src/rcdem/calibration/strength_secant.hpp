@@ -2,12 +2,14 @@
 // The strengths' part of the calibration search (docs/model.md 7, docs/calibration.md): sigma_c
 // and sigma_t as functions of the contact strengths tau and sigma_n,t, linearised in logarithms,
 //   y = (ln sigma_c, ln sigma_t),  x = (ln tau, ln sigma_n,t),  y(x + dx) ~ y(x) + J dx,
-// and solved for the target by Broyden's secant method: J starts as the identity (sigma_c follows
-// tau, sigma_t follows sigma_n,t, in proportion: the update the search used alone before), and
-// after every iteration takes the rank-one correction that makes it reproduce the step just
-// observed (Broyden 1965, "good" update). The diagonal guess fails where sigma_t rises as
-// sigma_n,t falls (a fixed G_f,n makes weaker contacts relatively more ductile); the secant learns
-// that sign from the first step that shows it.
+// and solved for the target by Broyden's secant method: J starts from a prior and after every
+// iteration takes the rank-one correction that makes it reproduce the step just observed
+// (Broyden 1965, "good" update). The prior is the slope measured near Table 1 on the calibration
+// cubes (docs/calibration.md): both strengths follow tau, and at a fixed G_f,n sigma_t *falls* as
+// sigma_n,t rises (stronger contacts soften over a shorter opening relative to their elastic one,
+// 2 G_f,n / sigma_n,t against sigma_n,t d / E_bar, and fail more brittly). The proportional guess
+// the search used before (identity: sigma_c follows tau, sigma_t follows sigma_n,t) walked away
+// from sigma_t's target there.
 #include <Eigen/Dense>
 
 #include "rcdem/core/types.hpp"
@@ -16,6 +18,15 @@ namespace rcdem {
 
 class StrengthSecant {
  public:
+  // d ln(sigma_c, sigma_t) / d ln(tau, sigma_nt) measured on the 80 mm cube near the calibrated
+  // set (search iterations 2-5 of docs/calibration.md, solved for the two columns).
+  static Eigen::Matrix2d measured_prior() {
+    Eigen::Matrix2d j;
+    j << 0.90, -0.09, 0.86, -0.35;
+    return j;
+  }
+  explicit StrengthSecant(const Eigen::Matrix2d& prior = measured_prior()) : prior_(prior), j_(prior) {}
+
   // Each step changes a strength by at most this factor (or its inverse).
   static constexpr Real kMaxFactor = 1.25;
 
@@ -28,7 +39,7 @@ class StrengthSecant {
   const Eigen::Matrix2d& jacobian() const { return j_; }
 
  private:
-  Eigen::Matrix2d j_ = Eigen::Matrix2d::Identity();
+  Eigen::Matrix2d prior_, j_;
   bool has_previous_ = false;
   Eigen::Vector2d x_previous_ = Eigen::Vector2d::Zero(), y_previous_ = Eigen::Vector2d::Zero();
 };
