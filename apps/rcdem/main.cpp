@@ -246,9 +246,9 @@ int study(const std::string& name, fs::path scenarios, fs::path out, bool force,
 int main(int argc, char** argv) {
   CLI::App app{"rcdem: 3D rigid-particle model for reinforced-concrete fracture"};
   app.require_subcommand(1);
-  app.set_version_flag("--version",
-                       std::string(rcdem::build_version()) + " (" + rcdem::build_git_hash() +
-                           ", " + rcdem::build_flavour() + ")");
+  app.set_version_flag("--version", std::string(rcdem::build_version()) + " (" +
+                                        rcdem::build_git_hash() + ", " + rcdem::build_flavour() +
+                                        ")");
   bool quiet = false;
   app.add_flag("-q,--quiet", quiet, "No progress or summary lines");
 

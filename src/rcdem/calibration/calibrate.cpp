@@ -197,13 +197,14 @@ CalibrationResult calibrate(const Scenario& base_in, const CalibrationOptions& o
       }
       const ContactParameters before = base.contact;
       base.contact = update_parameters(before, m, t);
-      const Eigen::Vector2d next = strengths.step(
-          {before.tau, before.sigma_nt}, {m.sigma_c, m.sigma_t}, {t.sigma_c, t.sigma_t});
+      const Eigen::Vector2d next = strengths.step({before.tau, before.sigma_nt},
+                                                  {m.sigma_c, m.sigma_t}, {t.sigma_c, t.sigma_t});
       base.contact.tau = next[0];
       base.contact.sigma_nt = next[1];
       const Eigen::Matrix2d& jac = strengths.jacobian();
       nlohmann::ordered_json rows = nlohmann::ordered_json::array();
-      for (int r = 0; r < 2; ++r) rows.push_back(nlohmann::ordered_json::array({jac(r, 0), jac(r, 1)}));
+      for (int r = 0; r < 2; ++r)
+        rows.push_back(nlohmann::ordered_json::array({jac(r, 0), jac(r, 1)}));
       history.back()["strength_jacobian"] = rows;
     }
     j["iterations"] = history;
@@ -221,17 +222,14 @@ CalibrationResult calibrate(const Scenario& base_in, const CalibrationOptions& o
   j["sigma_c"] = result.measured.sigma_c;
   j["sigma_t"] = result.measured.sigma_t;
   io::write_file_atomically(out / "calibration.json", j.dump(2) + "\n");
-  io::write_file_atomically(
-      out / "calibrated_contact.toml",
-      contact_fragment(result.parameters,
-                       opt.target ? (result.converged
-                                         ? "converged to the target"
-                                         : fmt::format("NOT converged: the best of {} iterations, "
-                                                       "worst misfit {:.1f}%",
-                                                       result.iterations,
-                                                       100 * worst_misfit(result.measured,
-                                                                          *opt.target)))
-                                  : "the parameters as given"));
+  std::string note = "the parameters as given";
+  if (opt.target)
+    note = result.converged
+               ? "converged to the target"
+               : fmt::format("NOT converged: the best of {} iterations, worst misfit {:.1f}%",
+                             result.iterations, 100 * worst_misfit(result.measured, *opt.target));
+  io::write_file_atomically(out / "calibrated_contact.toml",
+                            contact_fragment(result.parameters, note));
   // The final pair's curves beside the JSON, for the plot and for users.
   for (const auto* r : {&pair.compression, &pair.tension}) {
     write_curve_csv(out / fmt::format("curve_{}.csv", mode_name(r->mode)), r->curve);

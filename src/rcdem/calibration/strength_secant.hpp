@@ -25,7 +25,8 @@ class StrengthSecant {
     j << 0.90, -0.09, 0.86, -0.35;
     return j;
   }
-  explicit StrengthSecant(const Eigen::Matrix2d& prior = measured_prior()) : prior_(prior), j_(prior) {}
+  explicit StrengthSecant(const Eigen::Matrix2d& prior = measured_prior())
+      : prior_(prior), j_(prior) {}
 
   // Each step changes a strength by at most this factor (or its inverse).
   static constexpr Real kMaxFactor = 1.25;

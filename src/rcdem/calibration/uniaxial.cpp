@@ -126,9 +126,9 @@ UniaxialResult run_uniaxial(const Scenario& base, UniaxialMode mode, const Uniax
   const Real points = run.json["local_points"].get<Real>();
   const Real sign = mode == UniaxialMode::Compression ? -1.0 : 1.0;
   for (const auto& row : run.history_rows)
-    r.curve.push_back({sign * row[ez], row[load] / r.loaded_area,
-                       sign * 0.5 * (row[ex] + row[ey]), row[dam] / points, row[brk] / points,
-                       sign * row[iz], sign * 0.5 * (row[ix] + row[iy])});
+    r.curve.push_back({sign * row[ez], row[load] / r.loaded_area, sign * 0.5 * (row[ex] + row[ey]),
+                       row[dam] / points, row[brk] / points, sign * row[iz],
+                       sign * 0.5 * (row[ix] + row[iy])});
   analyse_curve(r);
   write_curve_csv(dir / "curve.csv", r.curve);
   return r;

@@ -26,12 +26,12 @@ struct UniaxialOptions {
 };
 
 struct CurvePoint {
-  Real strain;    // axial, from the face gauges over the true gauge length, positive in the
-                  // test's sense (io/strain_gauges.hpp)
-  Real stress;    // load / loaded area [Pa], positive in the test's sense
-  Real lateral;   // mean lateral strain (x and y), face gauges
-  Real damaged;   // fraction of local points with 0 < D < 1
-  Real broken;    // fraction with D = 1
+  Real strain;   // axial, from the face gauges over the true gauge length, positive in the
+                 // test's sense (io/strain_gauges.hpp)
+  Real stress;   // load / loaded area [Pa], positive in the test's sense
+  Real lateral;  // mean lateral strain (x and y), face gauges
+  Real damaged;  // fraction of local points with 0 < D < 1
+  Real broken;   // fraction with D = 1
   Real interior_strain = 0.0;   // axial, from the interior gauge (least-squares fit)
   Real interior_lateral = 0.0;  // mean lateral, interior gauge
 };
@@ -40,14 +40,15 @@ struct UniaxialResult {
   UniaxialMode mode;
   Real strength = 0.0;  // peak stress [Pa]
   Real strain_at_peak = 0.0;
-  // E and nu from the interior gauge: the bulk material, whatever the cube's size (docs/model.md 7).
-  Real E = 0.0;         // secant modulus at 40% of the peak [Pa]
-  Real nu = 0.0;        // -lateral / axial strain at 10% of the peak (elastic range)
-  Real nu_at_40 = 0.0;  // the same ratio at 40% of the peak (includes microcracking)
+  // E and nu from the interior gauge: the bulk material, whatever the cube's size (docs/model.md
+  // 7).
+  Real E = 0.0;             // secant modulus at 40% of the peak [Pa]
+  Real nu = 0.0;            // -lateral / axial strain at 10% of the peak (elastic range)
+  Real nu_at_40 = 0.0;      // the same ratio at 40% of the peak (includes microcracking)
   Real E_face_gauge = 0.0;  // E and nu read the same way from the face gauges
   Real nu_face_gauge = 0.0;
-  Real loaded_area = 0.0;  // the platen face's boundary area [m^2]
-  Real gauge_length = 0.0; // the axial face gauge's length [m]
+  Real loaded_area = 0.0;   // the platen face's boundary area [m^2]
+  Real gauge_length = 0.0;  // the axial face gauge's length [m]
   Real kinetic_over_strain_at_peak = 0.0;
   Real energy_balance_error = 0.0;
   std::vector<CurvePoint> curve;

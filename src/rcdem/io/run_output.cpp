@@ -171,9 +171,9 @@ History::History(const Simulation& sim, std::string control)
   }
   for (const char* c :
        {"strain_x", "strain_y", "strain_z", "interior_strain_x", "interior_strain_y",
-        "interior_strain_z", "load_N", "kinetic_J", "strain_J",
-        "dissipated_damage_J", "dissipated_friction_J", "dissipated_damping_J", "external_work_J",
-        "energy_balance_error", "damaged_points", "broken_points"})
+        "interior_strain_z", "load_N", "kinetic_J", "strain_J", "dissipated_damage_J",
+        "dissipated_friction_J", "dissipated_damping_J", "external_work_J", "energy_balance_error",
+        "damaged_points", "broken_points"})
     columns_.emplace_back(c);
   bars_ = !sim.nodes().empty();
   if (bars_)
@@ -194,8 +194,8 @@ void History::record(const Simulation& sim) {
   }
   const Vec3 strain = gauges_.face(sim.bodies());
   const Vec3 interior = gauges_.interior(sim.bodies());
-  row.insert(row.end(), {strain.x(), strain.y(), strain.z(), interior.x(), interior.y(),
-                         interior.z()});
+  row.insert(row.end(),
+             {strain.x(), strain.y(), strain.z(), interior.x(), interior.y(), interior.z()});
   const Plate* control = sim.find_plate(control_);
   const PulledBar* pulled = sim.find_pulled_bar(control_);
   const Energy& e = sim.energy();

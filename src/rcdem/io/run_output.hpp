@@ -22,7 +22,7 @@ class SnapshotWriter {
   friend struct CheckpointAccess;
   std::filesystem::path dir_;
   bool binary_, facets_;
-    void write_bars(const Simulation& sim, const std::string& stamp, VtuEncoding enc);
+  void write_bars(const Simulation& sim, const std::string& stamp, VtuEncoding enc);
   void emit(const UnstructuredGrid& g, const std::string& kind, const std::string& stamp,
             double time, VtuEncoding enc, std::vector<std::pair<double, std::string>>& series);
   std::vector<std::pair<double, std::string>> particle_series_, facet_series_, bar_series_;

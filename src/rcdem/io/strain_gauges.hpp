@@ -40,8 +40,9 @@ class StrainGauges {
   Real area_[6] = {0, 0, 0, 0, 0, 0};
   Vec3 gauge_length_ = Vec3::Zero();
   std::vector<Index> interior_;
-  Vec3 centre0_ = Vec3::Zero();// mean initial position of the interior set
-  Eigen::Matrix3d moment_inverse_ = Eigen::Matrix3d::Zero();// (sum X X^T)^-1 of the centred positions
+  Vec3 centre0_ = Vec3::Zero();  // mean initial position of the interior set
+  Eigen::Matrix3d moment_inverse_ =
+      Eigen::Matrix3d::Zero();  // (sum X X^T)^-1 of the centred positions
 };
 
 }  // namespace rcdem::io

@@ -531,8 +531,8 @@ RunSummary run_scenario(const Scenario& sc, const fs::path& out, const RunOption
     j["loop_seconds"] = loop_s;
     j["steps_per_second"] = loop_s > 0.0 ? static_cast<double>(r.steps) / loop_s : 0.0;
     j["seconds"] = wall;
-    j["rcdem"] = {{"version", build_version()}, {"git_hash", build_git_hash()},
-                  {"build", build_flavour()}};
+    j["rcdem"] = {
+        {"version", build_version()}, {"git_hash", build_git_hash()}, {"build", build_flavour()}};
     io::write_file_atomically(out / "summary.json", j.dump(2) + "\n");
     io::run_plot_tool("plot_history.py", out);  // load_displacement.png
     r.history_columns = history.columns();
