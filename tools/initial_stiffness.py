@@ -18,7 +18,8 @@ run, model = sys.argv[1], sys.argv[2]
 d, p = sr.curve(run)
 s = json.load(open(os.path.join(run, "summary.json")))
 first = s.get("first_cracking") or {}
-k0, qs, ke, imb = sr.initial_stiffness(d, p, first.get("load_N"), *sr.energy_rows(run))
+k0, qs, ke, imb = sr.initial_stiffness(d, p, first.get("load_N"),
+                                       *sr.energy_rows(run, p, sr.reactions(run)))
 kt, _ = sr.timoshenko_stiffness(model)
 kt_inner, _ = sr.timoshenko_stiffness(model, sr.SPAN - 0.020)
 inside = k0 is not None and kt <= k0 <= kt_inner

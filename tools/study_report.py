@@ -147,14 +147,15 @@ def behaviour(d, p):
 K0_KINETIC_LIMIT = 0.05
 
 
-def energy_rows(case_dir):
-    """Per history row: kinetic / strain energy, and |plate load - supports' reactions| / load."""
+def energy_rows(case_dir, p, rs):
+    """Per history row: kinetic / strain energy, and |plate load p - supports' reactions rs| / load
+    (NaN without the supports' columns, rs None)."""
     rows = read_csv(os.path.join(case_dir, "history.csv"))
     ratio = np.array([float(r["kinetic_J"]) / float(r["strain_J"]) if float(r["strain_J"]) > 0
                       else np.inf for r in rows])
-    rs = reactions(case_dir)
-    p = np.array([abs(float(r["load_N"])) for r in rows])
-    imbalance = np.abs(p - rs) / np.maximum(p, 1e-30) if rs is not None else np.full(len(rows), np.nan)
+    load = np.abs(p)
+    imbalance = (np.abs(load - rs) / np.maximum(load, 1e-30) if rs is not None
+                 else np.full(len(rows), np.nan))
     return ratio, imbalance
 
 
@@ -327,12 +328,12 @@ def main(study):
         beh["peak_load_N"] = summary.get("peak_load_N", beh["peak_load_N"])
         beh["deflection_at_peak_m"] = abs(summary.get("displacement_at_peak_m", beh["deflection_at_peak_m"]))
         first = summary.get("first_cracking") or {}
+        rs = reactions(case_dir)
         k0, k0_qs, k0_ke, k0_imb = initial_stiffness(
-            d, p, first.get("load_N") or beh["cracking_load_N"], *energy_rows(case_dir))
+            d, p, first.get("load_N") or beh["cracking_load_N"], *energy_rows(case_dir, p, rs))
         kt, kb = timoshenko_stiffness(r["model"])
         # The supports are 20 mm wide: once the beam bends it bears on their inner edges.
         kt_inner, _ = timoshenko_stiffness(r["model"], SPAN - 0.020)
-        rs = reactions(case_dir)
         if rs is not None and len(rs):
             k = int(np.argmax(rs))
             beh["reaction_peak_N"] = float(rs[k])

@@ -1,59 +1,36 @@
 // The strain gauges (io/strain_gauges.hpp, docs/model.md 7): exact under a uniform strain, and a
 // modulus read with them that does not depend on the cube's size (issue "Trustworthy numbers").
-#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "rcdem/io/scenario.hpp"
 #include "rcdem/io/strain_gauges.hpp"
 #include "rcdem/solver/simulation.hpp"
 #include "rcdem/specimens/specimen.hpp"
-#include "static_model.hpp"
 
 using namespace rcdem;
 
 namespace {
 
-// An elastic cube of the calibration's grading (8-12 mm particles, paper 2.3), between
-// frictionless platens, the top one moved by `velocity` after `ramp` (compression if < 0).
+// An elastic cube of the calibration's grading (8-12 mm particles, paper 2.3) between
+// frictionless platens: the golden case's scenario (tests/golden/scenarios/elastic_cube60.toml)
+// at another size, the top platen moved by `velocity` after `ramp` (compression if < 0).
 Scenario elastic_cube(Real size, Real velocity, Real ramp) {
-  return parse_scenario(fmt::format(R"(
-[specimen]
-shape = "box"
-size = [{0}, {0}, {0}]
-[generation]
-seed = 1
-porosity = 0.10
-[generation.aggregate]
-content = 568.5
-d_min = 0.008
-d_max = 0.012
-[generation.mortar]
-d_min = 0.008
-d_max = 0.009
-[contact]
-law = "EL"
-E_bar = 48.7e9
-alpha = 0.3
-[solver]
-damping = 0.7
-[plates.bottom]
-face = "z-"
-[plates.top]
-face = "z+"
-velocity = {1}
-ramp_time = {2}
-[loading]
-control_plate = "top"
-)",
-                                    size, velocity, ramp),
-                        "elastic_cube.toml");
+  Scenario s = load_scenario(std::filesystem::path(RCDEM_SOURCE_DIR) /
+                             "tests/golden/scenarios/elastic_cube60.toml");
+  s.specimen.size = Vec3::Constant(size);
+  PlateSettings& top = s.plates.at(1);
+  top.velocity = velocity;
+  top.ramp_time = ramp;
+  return s;
 }
 
 // The same bodies moved by the uniform displacement gradient g about the point c.

@@ -72,4 +72,13 @@ Vec3 StrainGauges::interior(const Bodies& b) const {
   return g.diagonal();
 }
 
+nlohmann::ordered_json StrainGauges::summary() const {
+  // Built key by key: a nested brace list leaves nlohmann to guess object or array.
+  nlohmann::ordered_json j = nlohmann::ordered_json::object();
+  j["face_gauge_length_m"] = {gauge_length_.x(), gauge_length_.y(), gauge_length_.z()};
+  j["face_area_m2"] = {area_[0], area_[1], area_[2], area_[3], area_[4], area_[5]};
+  j["interior_particles"] = interior_.size();
+  return j;
+}
+
 }  // namespace rcdem::io

@@ -11,6 +11,7 @@
 // Interior gauge: the least-squares affine fit u(x) = u0 + G (x - x0) to the displacements of the
 // concrete particles in the specimen's central region (the middle half of each side), away from
 // the faces and the platens' end restraint; strain_a = G_aa.
+#include <nlohmann/json.hpp>
 #include <vector>
 
 #include "rcdem/core/types.hpp"
@@ -34,6 +35,8 @@ class StrainGauges {
   // loaded area under a platen on that face.
   Real face_area(int f) const { return area_[f]; }
   std::size_t interior_particles() const { return interior_.size(); }
+  // summary.json's "gauges": face_gauge_length_m [3], face_area_m2 [6], interior_particles.
+  nlohmann::ordered_json summary() const;
 
  private:
   const BoundaryFaces* faces_;

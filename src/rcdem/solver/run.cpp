@@ -514,17 +514,7 @@ RunSummary run_scenario(const Scenario& sc, const fs::path& out, const RunOption
     j["first_cracking"] = cracks.first_cracking();
     j["local_points"] = sim.specimen().contacts.point_count();
     j["specimen"] = io::specimen_summary(sc, sim.specimen());
-    {
-      const io::StrainGauges& g = history.gauges();
-      const Vec3& l = g.gauge_length();
-      nlohmann::ordered_json areas = nlohmann::ordered_json::array();
-      for (int f = 0; f < 6; ++f) areas.push_back(g.face_area(f));
-      nlohmann::ordered_json gauges = nlohmann::ordered_json::object();
-      gauges["face_gauge_length_m"] = {l.x(), l.y(), l.z()};
-      gauges["face_area_m2"] = areas;
-      gauges["interior_particles"] = g.interior_particles();
-      j["gauges"] = gauges;
-    }
+    j["gauges"] = history.gauges().summary();
     // Wall-clock figures cover every session up to the state each handed on (a resumed run:
     // up to its checkpoint), so they may differ between otherwise identical runs.
     const double loop_s = loop_before + std::chrono::duration<double>(end - loop_start).count();
