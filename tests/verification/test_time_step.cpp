@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "dynamics_checks.hpp"
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/rng.hpp"
 #include "rcdem/io/scenario.hpp"
@@ -78,50 +79,18 @@ Scenario glued_box(Real size, Real alpha, Real inertia_scaling, Real added_mass_
                            0.0, alpha);
 }
 
-// omega_max of M^-1 K, K the tangent stiffness assembled from the solver's own force routines.
-Real highest_frequency(const Simulation& sim) {
-  const Bodies& b = sim.bodies();
-  const test::StaticModel model{&sim.specimen().contacts, b, sim.plates(), sim.plate_contacts(), 1};
-  const Eigen::MatrixXd K = model.tangent_stiffness();
-  Eigen::VectorXd w(K.rows());  // M^-1/2 (spheres: isotropic inertia)
-  for (Index i = 0; i < b.size(); ++i)
-    for (int a = 0; a < 3; ++a) {
-      w[6 * i + a] = 1.0 / std::sqrt(b.mass[i]);
-      w[6 * i + 3 + a] = 1.0 / std::sqrt(b.inertia[i][a]);
-    }
-  const Eigen::MatrixXd A = w.asDiagonal() * (0.5 * (K + K.transpose())) * w.asDiagonal();
-  return std::sqrt(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(A).eigenvalues().maxCoeff());
-}
-
-// Steps with random small velocities; true if it ran `steps` steps without an instability.
-bool runs_stably(Simulation& sim, Real dt, int steps) {
-  sim.set_time_step(dt);
-  Rng rng(7);
-  Bodies& b = sim.bodies();
-  for (Index i = 0; i < b.size(); ++i) {
-    b.velocity[i] = 1e-4 * Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
-    b.angular_velocity[i] = Vec3::Zero();
-  }
-  try {
-    for (int s = 0; s < steps; ++s) sim.step();
-  } catch (const Error&) {
-    return false;
-  }
-  return true;
-}
-
 // The estimate lies in [dt_crit / 2, dt_crit / sqrt 2] of the assembly's own omega_max (with its
 // masses as built), and fresh simulations of `sc` run stably just below dt_crit and blow up just
 // above it. Returns dt_crit.
 Real expect_estimate_brackets_critical_step(const Scenario& sc, const Specimen& sp,
                                             const Simulation& sim) {
-  const Real dt_crit = 2.0 / highest_frequency(sim);
+  const Real dt_crit = 2.0 / test::highest_frequency(sim);
   const Real est = sim.stable_time_step();
   EXPECT_GE(est, 0.5 * dt_crit * (1 - 1e-6));
   EXPECT_LE(est, dt_crit / std::sqrt(2.0) * (1 + 1e-6));
   Simulation below(sc, sp), above(sc, sp);
-  EXPECT_TRUE(runs_stably(below, 0.97 * dt_crit, 3000));
-  EXPECT_FALSE(runs_stably(above, 1.05 * dt_crit, 3000));
+  EXPECT_TRUE(test::runs_stably(below, 0.97 * dt_crit, 3000));
+  EXPECT_FALSE(test::runs_stably(above, 1.05 * dt_crit, 3000));
   return dt_crit;
 }
 

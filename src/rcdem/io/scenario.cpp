@@ -296,7 +296,16 @@ Scenario convert(Reader& r, const std::string& text) {
 
   s.law = r.string("contact.law") == "EL" ? ConcreteLaw::Elastic : ConcreteLaw::BilinearSoftening;
   s.solver.density = r.real("material.density");
+  s.solver.estimate = r.string("solver.time_step_estimate") == "assembled"
+                          ? TimeStepEstimate::Assembled
+                          : TimeStepEstimate::PerBody;
   s.solver.dt_safety = r.real("solver.dt_safety");
+  // SPEC 6: safety <= 0.5 on the per-body estimate, <= 0.8 on the assembly's critical step.
+  if (s.solver.estimate == TimeStepEstimate::PerBody && s.solver.dt_safety > 0.5)
+    fail(
+        "{}: key 'solver.dt_safety' = {}: with solver.time_step_estimate = \"per_body\" it must "
+        "be at most 0.5 (SPEC 6); up to 0.8 needs time_step_estimate = \"assembled\"",
+        r.at("solver.dt_safety"), s.solver.dt_safety);
   s.solver.time_step = r.real("solver.time_step");
   s.solver.damping = r.real("solver.damping");
   s.solver.mass_scaling = r.real("solver.mass_scaling");

@@ -49,8 +49,13 @@ struct ContactParameters {
 
 enum class ConcreteLaw { BilinearSoftening, Elastic };
 
+// How SPEC 6's time step is estimated: each body alone (solver/body_stiffness.hpp) or the
+// assembled system's highest frequency (solver/critical_time_step.hpp).
+enum class TimeStepEstimate { PerBody, Assembled };
+
 struct SolverSettings {
   Real density = 2400.0;  // kg/m^3 (material.density)
+  TimeStepEstimate estimate = TimeStepEstimate::PerBody;
   Real dt_safety = 0.3;
   Real time_step = 0.0;  // 0 = automatic
   Real damping = 0.7;
@@ -58,7 +63,7 @@ struct SolverSettings {
   Real added_mass_limit = 0.0;  // selective mass scaling (solver/selective_mass_scaling.hpp)
   Real bar_rotational_inertia_scaling = 1.0;       // the cylinders' moments of inertia only
   Real particle_rotational_inertia_scaling = 1.0;  // the particles' moments of inertia only
-  bool condense_elastic_contacts = true;  // contact/elastic_condensation.hpp
+  bool condense_elastic_contacts = true;           // contact/elastic_condensation.hpp
 };
 
 struct PlateSettings {
@@ -83,8 +88,8 @@ struct BarSettings {
   InterfaceLaw interface = InterfaceLaw::NL_B;
   Real interface_strength_scale = 1.0;  // on sigma_n,t and tau of a BL interface
   Real interface_energy_scale = 1.0;    // on G_fn and G_fs of a BL interface
-  Real sphere_spacing = 0.0;  // 0 = D / 2
-  Real pull_velocity = 0.0;   // pull-out of the first cylinder along end -> start
+  Real sphere_spacing = 0.0;            // 0 = D / 2
+  Real pull_velocity = 0.0;             // pull-out of the first cylinder along end -> start
   Real pull_ramp_time = 0.0;
   Real spacing() const { return sphere_spacing > 0.0 ? sphere_spacing : 0.5 * diameter; }
 };

@@ -8,6 +8,7 @@
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/parallel.hpp"
 #include "rcdem/reinforcement/rigid_rotation.hpp"
+#include "rcdem/solver/assembled_stiffness.hpp"
 #include "rcdem/solver/body_stiffness.hpp"
 #include "rcdem/solver/selective_mass_scaling.hpp"
 #include "rcdem/solver/sphere_update.hpp"
@@ -116,47 +117,44 @@ Simulation::Simulation(const Scenario& sc, Specimen specimen)
   position_eval_ = bodies_.position;
   position_prev_ = bodies_.position;
   pose_.resize(bodies_.size());
-  compute_stable_time_step(sc.solver.added_mass_limit);
+  compute_stable_time_step(sc.solver.added_mass_limit, sc.solver.estimate);
   dt_ = sc.solver.dt_safety * stable_dt_;
   if (sc.solver.time_step > 0.0) {
-    if (sc.solver.time_step > 0.5 * stable_dt_)
+    // SPEC 6's largest safety for the estimate in use.
+    const Real most = sc.solver.estimate == TimeStepEstimate::Assembled ? 0.8 : 0.5;
+    if (sc.solver.time_step > most * stable_dt_)
       fail(
-          "{}: key 'solver.time_step' ({:.4g} s) is above the stable limit: at most 0.5 x the "
+          "{}: key 'solver.time_step' ({:.4g} s) is above the stable limit: at most {} x the "
           "critical estimate {:.4g} s = {:.4g} s",
-          sc.source.string(), sc.solver.time_step, stable_dt_, 0.5 * stable_dt_);
+          sc.source.string(), sc.solver.time_step, most, stable_dt_, most * stable_dt_);
     dt_ = sc.solver.time_step;
   }
 }
 
-void Simulation::compute_stable_time_step(Real added_mass_limit) {
-  // SPEC 6's sqrt(m / sum k) per body, with "sum k" the body's own 6x6 stiffness block
-  // (solver/body_stiffness.hpp: why a block, and what the safety factor covers).
-  BodyStiffness blocks(bodies_.size());
-  const auto unit = [](const Vec3& v) { return Vec3(v / v.norm()); };
-  const auto add_points = [&](const ContactNetwork& nw, Index c, const Vec3& n) {
-    const Index a = nw.particle_a[c], b = nw.particle_b[c];
-    for (Index m = nw.point_begin[c]; m < nw.point_begin[c + 1]; ++m) {
-      const LocalPointConstants& k = nw.constants[m];
-      blocks.add_spring(a, n, k.kn, k.ks, nw.point_position0[m] - bodies_.position0[a]);
-      blocks.add_spring(b, n, k.kn, k.ks, nw.point_position0[m] - bodies_.position0[b]);
-    }
-  };
+template <class Visitor>
+void Simulation::visit_springs(Visitor&& v) const {
+  const auto unit = [](const Vec3& d) { return Vec3(d / d.norm()); };
   const ContactNetwork& nw = specimen_.contacts;
+  std::vector<Vec3> normal(static_cast<std::size_t>(nw.contact_count()));
   for (Index c = 0; c < nw.contact_count(); ++c)
-    add_points(nw, c,
-               unit(bodies_.position0[nw.particle_b[c]] - bodies_.position0[nw.particle_a[c]]));
+    normal[c] = unit(bodies_.position0[nw.particle_b[c]] - bodies_.position0[nw.particle_a[c]]);
+  v.network(nw, std::move(normal));
   // Interface contacts: normal across the cylinder's axis through the interface sphere.
-  for (const auto& ic : specimen_.interfaces)
+  for (const auto& ic : specimen_.interfaces) {
+    std::vector<Vec3> n(static_cast<std::size_t>(ic.net.contact_count()));
     for (Index c = 0; c < ic.net.contact_count(); ++c) {
       const Vec3 axis = bodies_.orientation0[ic.net.particle_b[c]] * Vec3::UnitZ();
       const Vec3 d = bodies_.position0[ic.net.particle_a[c]] - ic.anchor0[c];
-      add_points(ic.net, c, unit(d - d.dot(axis) * axis));
+      n[c] = unit(d - d.dot(axis) * axis);
     }
+    v.network(ic.net, std::move(n));
+  }
+  // Every plate contact, closed or not: the stiffest the plates can make the assembly.
   for (Index j = 0; j < plate_contacts_.size(); ++j) {
     const Index i = plate_contacts_.particle[j];
     const LocalPointConstants& k = plate_contacts_.constants[j];
-    blocks.add_spring(i, plates_[plate_contacts_.plate[j]].normal, k.kn, k.ks,
-                      plate_contacts_.point0[j] - bodies_.position0[i]);
+    const Vec3 arm = plate_contacts_.point0[j] - bodies_.position0[i];
+    v.spring(-1, i, arm, arm, plates_[plate_contacts_.plate[j]].normal, k.kn, k.ks);
   }
   // Interaction nodes (9): k_a along the node's axis and k_t across it, at the node; k_b and
   // k_theta as rotational springs. The node's vectors are world vectors at t = 0.
@@ -165,12 +163,57 @@ void Simulation::compute_stable_time_step(Real added_mass_limit) {
     const Vec3 axis = unit(node.axis_a + node.axis_b);
     const Mat3 kr = node.k.bending * (Mat3::Identity() - axis * axis.transpose()) +
                     node.k.torsion * axis * axis.transpose();
-    for (const bool for_b : {false, true}) {
-      const Index i = for_b ? node_refs_[j].body_b : node_refs_[j].body_a;
-      blocks.add_spring(i, axis, node.k.axial, node.k.shear, for_b ? node.arm_b : node.arm_a);
-      blocks.add_rotational(i, kr);
+    const NodeRef& r = node_refs_[j];
+    v.spring(r.body_a, r.body_b, node.arm_a, node.arm_b, axis, node.k.axial, node.k.shear);
+    v.rotational(r.body_a, r.body_b, kr);
+  }
+}
+
+namespace {
+// visit_springs() into the bodies' own blocks: each spring counts on each of its bodies.
+struct BlockVisitor {
+  BodyStiffness& blocks;
+  const std::vector<Vec3>& centre0;
+  void network(const ContactNetwork& nw, const std::vector<Vec3>& normal) {
+    for (Index c = 0; c < nw.contact_count(); ++c) {
+      const Index a = nw.particle_a[c], b = nw.particle_b[c];
+      for (Index m = nw.point_begin[c]; m < nw.point_begin[c + 1]; ++m) {
+        const LocalPointConstants& k = nw.constants[m];
+        blocks.add_spring(a, normal[c], k.kn, k.ks, nw.point_position0[m] - centre0[a]);
+        blocks.add_spring(b, normal[c], k.kn, k.ks, nw.point_position0[m] - centre0[b]);
+      }
     }
   }
+  void spring(Index a, Index b, const Vec3& arm_a, const Vec3& arm_b, const Vec3& n, Real kn,
+              Real ks) {
+    if (a >= 0) blocks.add_spring(a, n, kn, ks, arm_a);
+    blocks.add_spring(b, n, kn, ks, arm_b);
+  }
+  void rotational(Index a, Index b, const Mat3& k) {
+    blocks.add_rotational(a, k);
+    blocks.add_rotational(b, k);
+  }
+};
+
+// visit_springs() into the assembly's operator.
+struct AssemblyVisitor {
+  AssembledStiffness& k;
+  void network(const ContactNetwork& nw, std::vector<Vec3> normal) {
+    k.add_network(nw, std::move(normal));
+  }
+  void spring(Index a, Index b, const Vec3& arm_a, const Vec3& arm_b, const Vec3& n, Real kn,
+              Real ks) {
+    k.add_spring(a, b, arm_a, arm_b, n, kn, ks);
+  }
+  void rotational(Index a, Index b, const Mat3& kr) { k.add_rotational(a, b, kr); }
+};
+}  // namespace
+
+void Simulation::compute_stable_time_step(Real added_mass_limit, TimeStepEstimate estimate) {
+  // SPEC 6's sqrt(m / sum k) per body, with "sum k" the body's own 6x6 stiffness block
+  // (solver/body_stiffness.hpp: why a block, and what the safety factor covers).
+  BodyStiffness blocks(bodies_.size());
+  visit_springs(BlockVisitor{blocks, bodies_.position0});
   // Each body's own estimate, and the body and motion that set the shortest (named below).
   std::vector<Real> steps(static_cast<std::size_t>(bodies_.size()));
   Index first = 0;
@@ -209,6 +252,15 @@ void Simulation::compute_stable_time_step(Real added_mass_limit) {
         mass_scaling_.bodies_scaled, mass_scaling_.largest_factor,
         100.0 * mass_scaling_.added_fraction(), mass_scaling_.unscaled_step, stable_dt_limit_);
   stable_dt_ = mass_scaling_.time_step;
+  if (estimate == TimeStepEstimate::Assembled) {
+    // The whole assembly's critical step, with the masses as scaled (critical_time_step.hpp).
+    AssembledStiffness k(bodies_);
+    visit_springs(AssemblyVisitor{k});
+    critical_ = assembled_critical_time_step(k, 1.0 / (stable_dt_ * stable_dt_));
+    stable_dt_limit_ = fmt::format("{}; per-body estimate {:.4g} s ({})", critical_.how(),
+                                   stable_dt_, stable_dt_limit_);
+    stable_dt_ = critical_.time_step;
+  }
 }
 
 ContactInputs Simulation::concrete_inputs(const std::vector<Vec3>& positions,

@@ -12,6 +12,7 @@
 #include "rcdem/io/scenario.hpp"
 #include "rcdem/reinforcement/interaction_node.hpp"
 #include "rcdem/solver/body_contacts.hpp"
+#include "rcdem/solver/critical_time_step.hpp"
 #include "rcdem/solver/energy.hpp"
 #include "rcdem/solver/plates.hpp"
 #include "rcdem/solver/selective_mass_scaling.hpp"
@@ -47,9 +48,12 @@ class Simulation {
 
   void step();
 
-  // min over bodies of sqrt(m / sum k) and sqrt(I / sum k r^2) (SPEC 6), with the masses after
-  // any selective mass scaling.
+  // The estimate the time step is a safety factor of (SPEC 6), with the masses after any
+  // selective mass scaling: min over bodies of sqrt(m / sum k) and its rotational analogue
+  // ("per_body"), or 2 / omega_max of the assembly ("assembled").
   Real stable_time_step() const { return stable_dt_; }
+  // solver.time_step_estimate = "assembled": the assembly's omega_max and how it was found.
+  const CriticalTimeStep& critical_time_step() const { return critical_; }
   // Which body and motion set the stable estimate, in words.
   const std::string& stable_time_step_limit() const { return stable_dt_limit_; }
   // solver.added_mass_limit's selective mass scaling, as applied (identity when off).
@@ -119,7 +123,11 @@ class Simulation {
 
  private:
   friend struct io::CheckpointAccess;
-  void compute_stable_time_step(Real added_mass_limit);
+  void compute_stable_time_step(Real added_mass_limit, TimeStepEstimate estimate);
+  // Calls v.network(net, normals), v.spring(a, b, arm_a, arm_b, n, kn, ks) (a < 0: a plate) and
+  // v.rotational(a, b, k) for every spring of SPEC 6's estimates, at t = 0.
+  template <class Visitor>
+  void visit_springs(Visitor&& v) const;
   ContactInputs concrete_inputs(const std::vector<Vec3>& positions,
                                 const std::vector<Eigen::Matrix3d>& rotation) const;
   void gather_forces();
@@ -152,6 +160,7 @@ class Simulation {
   Real damping_;
   Real dt_ = 0.0, stable_dt_ = 0.0;
   std::string stable_dt_limit_;
+  CriticalTimeStep critical_;
   MassScalingPlan mass_scaling_;
   Real time_ = 0.0;
   std::int64_t steps_ = 0;
