@@ -247,7 +247,11 @@ def write_reference(case, git, build, v, curve):
     above the first table header that belongs to the reference."""
     with open(case["path"]) as f:
         text = f.read()
-    head = text.split("\n[reference]")[0].rstrip() + "\n"
+    head = text.split("\n[reference]")[0].rstrip()
+    marker = "# Written by tests/golden/check_golden.py --update; compared bitwise."
+    while head.endswith(marker):  # this function's own line from the last update
+        head = head[: -len(marker)].rstrip()
+    head += "\n"
     ref = {"git_hash": git, "build": build, "date": datetime.date.today().isoformat(),
            "load_N": curve, "values": v}
     body = "\n# Written by tests/golden/check_golden.py --update; compared bitwise.\n[reference]\n"
