@@ -48,8 +48,8 @@ Scenario small_run() {
   return load_scenario(fs::path(RCDEM_SOURCE_DIR) / "tests/regression/small_run.toml");
 }
 
-// A bar pulled out of a small cube: the pulled-bar state.
-Scenario pull_out() {
+// A bar pulled out of a small cube: the pulled-bar state; `loading` adds keys to [loading].
+Scenario pull_out(const std::string& loading = "") {
   return parse_scenario(R"(
 [specimen]
 shape = "box"
@@ -68,11 +68,11 @@ pull_velocity = 1.0
 pull_ramp_time = 2.0e-5
 [plates.support]
 face = "x-"
-[loading]
-control_bar = "bar"
 [stop]
 displacement = 0.0005
-)",
+[loading]
+control_bar = "bar"
+)" + loading,
                         "pull_out.toml");
 }
 
@@ -150,7 +150,12 @@ TEST(Checkpoint, Crc32IsZlibs) {
 // equals the original bitwise, and stays equal over 300 more steps: nothing that a step uses is
 // missing from the checkpoint.
 TEST(Checkpoint, RestoredRunContinuesBitwise) {
-  for (const Scenario& sc : {small_run(), pull_out()}) {
+  // The third with an adaptive loading rate whose factor has moved by step 300 (kinetic bound
+  // out of reach, a doubling every 10 us): its controller's memory round-trips too.
+  const Scenario adaptive = pull_out(
+      "adaptive_rate = true\nkinetic_ratio = 0.99\nrate_doubling_time = 1e-5\n"
+      "damage_work_ratio = 1e9\n");
+  for (const Scenario& sc : {small_run(), pull_out(), adaptive}) {
     SCOPED_TRACE(sc.source.string());
     const Specimen specimen = build_specimen(sc);
     Simulation a(sc, specimen);
@@ -180,6 +185,8 @@ TEST(Checkpoint, RestoredRunContinuesBitwise) {
       EXPECT_EQ(a.pulled_bars()[0].displacement, b.pulled_bars()[0].displacement);
       EXPECT_GT(a.pulled_bars()[0].displacement, 0.0);
     }
+    EXPECT_EQ(a.loading_rate_factor(), b.loading_rate_factor());
+    if (sc.loading_rate.adaptive) EXPECT_GT(a.loading_rate_factor(), 1.0);
     // Something happened worth keeping: damage, node forces, plate reactions.
     EXPECT_GT(a.energy().damage + a.energy().friction, 0.0);
   }
@@ -266,11 +273,13 @@ TEST(Checkpoint, DamagedFilesAreRejectedWithTheReason) {
   EXPECT_NE(restore_msg(magic).find("not an rcdem checkpoint"), std::string::npos);
   std::string newer = bytes;
   newer[8] = static_cast<char>(io::kCheckpointVersion + 1);
-  EXPECT_NE(restore_msg(newer).find(fmt::format("format version {} is newer", io::kCheckpointVersion + 1)), std::string::npos);
+  EXPECT_NE(restore_msg(newer).find(
+                fmt::format("format version {} is newer", io::kCheckpointVersion + 1)),
+            std::string::npos);
   std::string older = bytes;
   older[8] = static_cast<char>(io::kCheckpointVersion - 1);
-  EXPECT_NE(restore_msg(older).find(fmt::format("format version {} is older",
-                                                io::kCheckpointVersion - 1)),
+  EXPECT_NE(restore_msg(older).find(
+                fmt::format("format version {} is older", io::kCheckpointVersion - 1)),
             std::string::npos);
   EXPECT_NE(restore_msg(bytes + "x").find("data after the end"), std::string::npos);
   // Another scenario's inputs, another specimen.

@@ -440,6 +440,12 @@ struct CheckpointAccess {
       r.f(e.damping);
       r.f(e.plastic);
     });
+    // loading.adaptive_rate's controller (solver/loading_rate.hpp); 1, 0, 0 when off.
+    ar.record("loading_rate", 3, [&](auto& r) {
+      r.f(s.loading_rate_.st_.factor);
+      r.f(s.loading_rate_.st_.work);
+      r.f(s.loading_rate_.st_.damage);
+    });
   }
 
   template <typename Ar, typename H>

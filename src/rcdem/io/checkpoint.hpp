@@ -28,7 +28,7 @@ class SnapshotWriter;
 class CrackRecord;
 
 inline constexpr char kCheckpointMagic[9] = "RCDEMCKP";
-inline constexpr std::uint32_t kCheckpointVersion = 3;
+inline constexpr std::uint32_t kCheckpointVersion = 4;
 
 // CRC-32 (IEEE 802.3, reflected, polynomial 0xEDB88320: the CRC of zlib, PNG and gzip), so that
 // zlib.crc32 in Python checks a file. `crc` continues an earlier call.

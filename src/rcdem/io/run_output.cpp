@@ -180,6 +180,8 @@ History::History(const Simulation& sim, std::string control)
     for (const char* c :
          {"max_axial_force_N", "yielded_nodes", "broken_interface_points", "dissipated_plastic_J"})
       columns_.emplace_back(c);
+  adaptive_rate_ = sim.adaptive_loading_rate();
+  if (adaptive_rate_) columns_.emplace_back("loading_rate_factor");
 }
 
 void History::record(const Simulation& sim) {
@@ -208,6 +210,7 @@ void History::record(const Simulation& sim) {
   if (bars_)
     row.insert(row.end(), {sim.max_axial_force(), static_cast<double>(sim.yielded_nodes()),
                            static_cast<double>(sim.broken_interface_points()), e.plastic});
+  if (adaptive_rate_) row.push_back(sim.loading_rate_factor());
   rows_.push_back(std::move(row));
 }
 

@@ -43,6 +43,7 @@ class History {
   std::string control_;
   StrainGauges gauges_;
   bool bars_ = false;
+  bool adaptive_rate_ = false;  // a loading_rate_factor column
   std::vector<std::string> columns_;
   std::vector<std::vector<double>> rows_;
 };

@@ -396,6 +396,11 @@ Scenario convert(Reader& r, const std::string& text) {
   }
   s.control_plate = r.string("loading.control_plate");
   s.control_bar = r.string("loading.control_bar");
+  s.loading_rate.adaptive = r.boolean("loading.adaptive_rate");
+  s.loading_rate.max_factor = r.real("loading.max_rate_factor");
+  s.loading_rate.kinetic_ratio = r.real("loading.kinetic_ratio");
+  s.loading_rate.damage_work_ratio = r.real("loading.damage_work_ratio");
+  s.loading_rate.doubling_time = r.real("loading.rate_doubling_time");
   if (!s.control_bar.empty()) {
     const auto it = std::find_if(s.bars.begin(), s.bars.end(),
                                  [&](const BarSettings& b) { return b.name == s.control_bar; });

@@ -66,6 +66,15 @@ struct SolverSettings {
   bool condense_elastic_contacts = true;           // contact/elastic_condensation.hpp
 };
 
+// loading.adaptive_rate and its bounds (solver/loading_rate.hpp).
+struct LoadingRateSettings {
+  bool adaptive = false;
+  Real max_factor = 4.0;
+  Real kinetic_ratio = 0.01;
+  Real damage_work_ratio = 0.5;
+  Real doubling_time = 2e-3;  // s
+};
+
 struct PlateSettings {
   std::string name;
   int axis = 2;              // 0, 1, 2 for x, y, z
@@ -124,6 +133,7 @@ struct Scenario {
   std::vector<BarSettings> bars;      // in the order given
   std::string control_plate;
   std::string control_bar;  // a pulled bar, instead of a control plate
+  LoadingRateSettings loading_rate;
   StopSettings stop;
   OutputSettings output;
   std::string text;                     // the scenario as given, kept for the run directory

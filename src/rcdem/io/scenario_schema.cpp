@@ -188,6 +188,22 @@ Schema build() {
             "Name of the plate whose reaction is the load and whose displacement is controlled."));
   s.key(typed("loading.control_bar", KeyType::String, std::string(""), Range{},
               "Or: name of a pulled bar (pull_velocity > 0) whose pull-out force is the load."));
+  s.key(typed("loading.adaptive_rate", KeyType::Boolean, false, Range{},
+              "Adaptive loading rate (docs/model.md 6): every prescribed plate and pulled bar "
+              "moves at a factor x its velocity, the factor rising while the kinetic energy is "
+              "small against the strain energy and no crack bursts, and falling back to 1 when "
+              "either fails. Displacement stays the control variable."));
+  s.key(real("loading.max_rate_factor", 4.0, Range{1.0, 100.0}, "",
+             "Adaptive rate: the largest factor on the set velocities."));
+  s.key(real("loading.kinetic_ratio", 0.01, Range{0.0, 1.0, false, true}, "",
+             "Adaptive rate: above this kinetic / strain energy the factor falls; below half of "
+             "it, it rises."));
+  s.key(real("loading.damage_work_ratio", 0.5, Range{0.0, kInf, false, true}, "",
+             "Adaptive rate: a crack burst, when more than this fraction of the work done over "
+             "the last check (20 steps) is dissipated by damage: the factor falls."));
+  s.key(real("loading.rate_doubling_time", 2e-3, Range{0.0, kInf, false, true}, "s",
+             "Adaptive rate: the factor rises by about 2x over this time at most, and falls 2x "
+             "in a quarter of it (about one period of the specimen's first mode or more)."));
 
   s.section("stop", "Stop rules: the run ends when any active rule triggers (0 = off).");
   s.key(real("stop.displacement", 0.0, Range{0.0, kInf}, "m",

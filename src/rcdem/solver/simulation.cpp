@@ -23,7 +23,8 @@ Simulation::Simulation(const Scenario& sc, Specimen specimen)
       law_kind_(sc.law),
       bilinear_{sc.contact.sigma_nt, sc.contact.tau, sc.contact.G_fn, sc.contact.G_fs,
                 sc.contact.mu_c},
-      damping_(sc.solver.damping) {
+      damping_(sc.solver.damping),
+      loading_rate_(sc.loading_rate) {
   for (Vec3& inertia : bodies_.inertia) inertia *= sc.solver.particle_rotational_inertia_scaling;
   // The bars' cylinders: exact mass and inertia (SPEC 7), principal frame z along the axis.
   for (const Bar& bar : specimen_.bars)
@@ -388,10 +389,11 @@ void Simulation::step() {
     energy_.external_work += work;
     plate_force_prev_[p] = f_on_specimen;
     plate_displacement_prev_[p] = plate.displacement;
-    plate.displacement += plate.velocity_at(time_ + 0.5 * dt_) * dt_;
+    plate.displacement += loading_rate_.factor() * plate.velocity_at(time_ + 0.5 * dt_) * dt_;
   }
   time_ += dt_;
   ++steps_;
+  loading_rate_.update(steps_, dt_, energy_);
 }
 
 void Simulation::run_small_task(const SmallTask& task) {
@@ -516,7 +518,7 @@ void Simulation::integrate() {
     if (driven >= 0) {
       // A pulled cylinder: prescribed velocity, rotation held, no damping.
       const PulledBar& pb = pulled_[static_cast<std::size_t>(driven)];
-      v_new = pb.velocity_at(time_ + 0.5 * dt) * pb.direction;
+      v_new = loading_rate_.factor() * pb.velocity_at(time_ + 0.5 * dt) * pb.direction;
       fd.setZero();
       td = t;
       b.angular_momentum[i].setZero();

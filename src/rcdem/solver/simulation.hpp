@@ -14,6 +14,7 @@
 #include "rcdem/solver/body_contacts.hpp"
 #include "rcdem/solver/critical_time_step.hpp"
 #include "rcdem/solver/energy.hpp"
+#include "rcdem/solver/loading_rate.hpp"
 #include "rcdem/solver/plates.hpp"
 #include "rcdem/solver/selective_mass_scaling.hpp"
 #include "rcdem/specimens/specimen.hpp"
@@ -59,6 +60,9 @@ class Simulation {
   // solver.added_mass_limit's selective mass scaling, as applied (identity when off).
   const MassScalingPlan& mass_scaling() const { return mass_scaling_; }
   Real time_step() const { return dt_; }
+  // loading.adaptive_rate: the factor on every prescribed speed now (1 when off).
+  Real loading_rate_factor() const { return loading_rate_.factor(); }
+  bool adaptive_loading_rate() const { return loading_rate_.adaptive(); }
   void set_time_step(Real dt) { dt_ = dt; }  // for tests that probe stability
   Real time() const { return time_; }
   std::int64_t steps() const { return steps_; }
@@ -161,6 +165,7 @@ class Simulation {
   Real dt_ = 0.0, stable_dt_ = 0.0;
   std::string stable_dt_limit_;
   CriticalTimeStep critical_;
+  LoadingRate loading_rate_;
   MassScalingPlan mass_scaling_;
   Real time_ = 0.0;
   std::int64_t steps_ = 0;
