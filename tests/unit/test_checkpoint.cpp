@@ -394,16 +394,20 @@ TEST(Checkpoint, StateDoesNotDependOnThreadCount) {
   replace("cylinder_length = 0.01", "cylinder_length = 0.02");
   replace("velocity = -0.5", "velocity = -2.0");
   replace("ramp_time = 5.0e-5", "ramp_time = 2.0e-5");
+  // With the assembled critical step, whose operator runs in parallel: the same step too.
+  text += "\n[solver]\ntime_step_estimate = \"assembled\"\ndt_safety = 0.8\n";
   const Scenario sc = parse_scenario(text, "cube100.toml");
   const Specimen specimen = build_specimen(sc);
   ASSERT_GT(specimen.contacts.contact_count(), 2048);
   const int threads = omp_get_max_threads();
   std::string state[2];
-  Real damage[2] = {0, 0}, strain[2] = {0, 0};
+  Real damage[2] = {0, 0}, strain[2] = {0, 0}, dt[2] = {0, 0};
   for (int t = 0; t < 2; ++t) {
     omp_set_num_threads(t + 1);
     Simulation sim(sc, specimen);
     ASSERT_GT(sim.bodies().size(), 2048);
+    ASSERT_TRUE(sim.critical_time_step().converged);
+    dt[t] = sim.time_step();
     for (int i = 0; i < 250; ++i) sim.step();
     // Summed by blocks of contacts in parallel (some condensed, some from their points).
     strain[t] = sim.strain_energy();
@@ -415,6 +419,7 @@ TEST(Checkpoint, StateDoesNotDependOnThreadCount) {
   EXPECT_EQ(damage[0], damage[1]);
   EXPECT_GT(strain[0], 0.0);
   EXPECT_EQ(strain[0], strain[1]);
+  EXPECT_EQ(dt[0], dt[1]);
   EXPECT_EQ(difference(state[0], state[1]), "") << "1 and 2 threads differ";
 #endif
 }
