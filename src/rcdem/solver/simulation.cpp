@@ -258,9 +258,9 @@ void Simulation::compute_stable_time_step(Real added_mass_limit, TimeStepEstimat
     AssembledStiffness k(bodies_);
     visit_springs(AssemblyVisitor{k});
     critical_ = assembled_critical_time_step(k, 1.0 / (stable_dt_ * stable_dt_));
-    stable_dt_limit_ = fmt::format("{}; per-body estimate {:.4g} s ({})", critical_.how(),
-                                   stable_dt_, stable_dt_limit_);
-    stable_dt_ = critical_.time_step;
+    stable_dt_limit_ = fmt::format("{}, x 1/sqrt(1 + damping {}); per-body estimate {:.4g} s ({})",
+                                   critical_.how(), damping_, stable_dt_, stable_dt_limit_);
+    stable_dt_ = damped_critical_time_step(critical_.time_step, damping_);
   }
 }
 
