@@ -9,7 +9,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <thread>
 
 #include "rcdem/calibration/calibrate.hpp"
@@ -103,12 +105,30 @@ void parse_checkpoint_every(const std::string& text, rcdem::RunOptions& o) {
   }
 }
 
+// The --checkpoint-every a run was started (or last resumed) with, from its manifest; empty if
+// it recorded none.
+std::string recorded_checkpoint_every(const fs::path& dir) {
+  std::ifstream in(dir / "manifest.json");
+  const auto m = nlohmann::json::parse(in, nullptr, false);
+  if (m.is_discarded() || !m.is_object() || !m.contains("checkpoint_every") ||
+      !m["checkpoint_every"].is_string())
+    return "";
+  return m["checkpoint_every"].get<std::string>();
+}
+
 int run(const fs::path& scenario_path, fs::path out, bool force, const fs::path& resume,
-        const std::string& checkpoint_every, const std::vector<std::string>& command) {
+        std::string checkpoint_every, bool checkpoint_every_given,
+        const std::vector<std::string>& command) {
   rcdem::RunOptions options;
   options.handle_signals = true;
   options.command = command;
+  // A resumed run keeps its interval unless told otherwise (issue 28).
+  if (!resume.empty() && !checkpoint_every_given) {
+    const std::string recorded = recorded_checkpoint_every(resume);
+    if (!recorded.empty()) checkpoint_every = recorded;
+  }
   parse_checkpoint_every(checkpoint_every, options);
+  options.checkpoint_every_text = checkpoint_every;
   rcdem::RunSummary r;
   if (!resume.empty()) {
     if (!scenario_path.empty())
@@ -335,6 +355,7 @@ int main(int argc, char** argv) {
     if (*gen) return generate(scenario, out, force);
     if (*runc)
       return run(scenario, out, force, resume, checkpoint_every,
+                 runc->count("--checkpoint-every") > 0,
                  std::vector<std::string>(argv, argv + argc));
     if (*cal)
       return calibrate(scenario, out, force, size, rate_factor, sets, target, tolerance, iterations,

@@ -186,6 +186,10 @@ try:
     check(states == ["killed", "finished"] and m["sessions"][1]["resumed_from"]["step"] == last
           and m["exit_state"] == "finished",
           f"manifest: sessions {states}, the second resumed from step {last}")
+    # Issue 28: a --resume without --checkpoint-every keeps the run's own interval.
+    kept = [s.get("checkpoint_every") for s in m["sessions"]]
+    check(kept == ["300", "300"] and m.get("checkpoint_every") == "300",
+          f"--checkpoint-every 300 kept by the resumed session: {kept}")
     check(not [f for f in os.listdir(killed) if ".tmp." in f] and not checkpoints(killed),
           "no temporary file or checkpoint left after the resumed run")
     r = run(["run", "--resume", killed])

@@ -213,6 +213,10 @@ RunSummary run_scenario(const Scenario& sc, const fs::path& out, const RunOption
                              {"command", opt.command},
                              {"resumed_from", nullptr},
                              {"exit_state", "running"}});
+    if (!opt.checkpoint_every_text.empty()) {
+      j["checkpoint_every"] = opt.checkpoint_every_text;
+      j["sessions"].back()["checkpoint_every"] = opt.checkpoint_every_text;
+    }
   }
   // A run refused during its set-up leaves no manifest (nor anything else) behind.
   bool manifest_started = opt.resume;

@@ -35,6 +35,9 @@ struct RunOptions {
   // Periodic checkpoints: every this many steps, and/or this many seconds of wall time (0: no).
   std::int64_t checkpoint_every_steps = 0;
   double checkpoint_every_seconds = 0.0;
+  // The interval as the user gave it ("5000", "10min"), recorded in the manifest so that a
+  // --resume without --checkpoint-every keeps it (empty: not recorded).
+  std::string checkpoint_every_text;
   // SIGINT/SIGTERM during the loop: finish the step, write a checkpoint, history.csv and
   // broken_points.csv, and return with stop_reason "interrupted". A second signal kills at once.
   bool handle_signals = false;
