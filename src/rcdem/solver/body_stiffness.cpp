@@ -36,9 +36,14 @@ BodyStiffness::Limit BodyStiffness::limit(Index i, Real mass, const Vec3& inerti
   w.topLeftCorner<3, 3>() = Mat3::Identity() / std::sqrt(mass);
   w.bottomRightCorner<3, 3>() =
       axes * inertia.cwiseSqrt().cwiseInverse().asDiagonal() * axes.transpose();
-  const Mat6 a = w * k_[static_cast<std::size_t>(i)] * w;
+  const Mat6& k = k_[static_cast<std::size_t>(i)];
+  if (k.isZero(0.0)) return {std::numeric_limits<Real>::infinity(), false, 0};  // no spring
+  const Mat6 a = w * k * w;
   const Eigen::SelfAdjointEigenSolver<Mat6> eig(a);
   const Real lambda = eig.eigenvalues()[5];
+  // A block too stiff for its mass to be resolved in doubles (a modulus of 1e200: the solver's
+  // squared norms overflow) has no usable step: 0, which the caller refuses.
+  if (!std::isfinite(lambda) || !a.allFinite()) return {0.0, false, 0};
   if (!(lambda > 0.0)) return {std::numeric_limits<Real>::infinity(), false, 0};
   const Eigen::Matrix<Real, 6, 1> v = eig.eigenvectors().col(5);
   Limit out{1.0 / std::sqrt(lambda), v.tail<3>().squaredNorm() > v.head<3>().squaredNorm(), 0};

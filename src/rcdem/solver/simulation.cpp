@@ -118,7 +118,7 @@ Simulation::Simulation(const Scenario& sc, Specimen specimen)
   position_eval_ = bodies_.position;
   position_prev_ = bodies_.position;
   pose_.resize(bodies_.size());
-  compute_stable_time_step(sc.solver.added_mass_limit, sc.solver.estimate);
+  compute_stable_time_step(sc.solver.added_mass_limit, sc.solver.estimate, sc.source.string());
   dt_ = sc.solver.dt_safety * stable_dt_;
   if (sc.solver.time_step > 0.0) {
     // SPEC 6's largest safety for the estimate in use.
@@ -210,7 +210,8 @@ struct AssemblyVisitor {
 };
 }  // namespace
 
-void Simulation::compute_stable_time_step(Real added_mass_limit, TimeStepEstimate estimate) {
+void Simulation::compute_stable_time_step(Real added_mass_limit, TimeStepEstimate estimate,
+                                          const std::string& source) {
   // SPEC 6's sqrt(m / sum k) per body, with "sum k" the body's own 6x6 stiffness block
   // (solver/body_stiffness.hpp: why a block, and what the safety factor covers).
   BodyStiffness blocks(bodies_.size());
@@ -230,6 +231,14 @@ void Simulation::compute_stable_time_step(Real added_mass_limit, TimeStepEstimat
   }
   if (!std::isfinite(l.time_step))
     fail("the specimen has no contact: no time step can be estimated");
+  // Issue 28: a step this short means a stiffness or mass far outside any material (a run would
+  // need 1e12 steps per second of loading, or fill its history with inf): refused, naming why.
+  if (!(l.time_step >= kMinimumTimeStep))
+    fail(
+        "{}: the stable time step {:.3g} s of {} {} is below {:.0e} s: it is far too stiff for its "
+        "mass; check contact.E_bar, bars.*.E, material.density and bars.*.density",
+        source, l.time_step, first >= specimen_.concrete() ? "bar cylinder" : "particle", first,
+        kMinimumTimeStep);
   const bool cylinder = first >= specimen_.concrete();
   static const char* const kWhat[] = {"rotation about body axis x", "rotation about body axis y",
                                       "rotation about body axis z"};
