@@ -25,8 +25,8 @@ import json, pathlib, sys
 out = pathlib.Path(sys.argv[1])
 print(f"{'case':12} {'steps before':>12} {'after':>8} {'ratio':>6} {'wall before':>11} {'after':>7} "
       f"{'peak before [kN]':>16} {'after':>7} {'diff':>6}")
-for s in sorted((out / "before").glob("*/summary.json")):
-    a = out / "after" / s.parent.name / "summary.json"
+for s in sorted((out / "before" / "cases").glob("*/summary.json")):
+    a = out / "after" / "cases" / s.parent.name / "summary.json"
     if not a.exists():
         continue
     b, n = json.loads(s.read_text()), json.loads(a.read_text())
