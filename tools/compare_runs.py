@@ -9,19 +9,19 @@ Deflections in mm on the command line and in the table; SI everywhere else. A de
 did not reach is left blank.
 """
 import argparse
-import csv
 import json
+import os
 import pathlib
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import study_report as sr  # noqa: E402
 
 
 def load_run(d):
-    d = pathlib.Path(d)
-    s = json.loads((d / "summary.json").read_text())
-    control = s["control"]
-    rows = list(csv.DictReader(open(d / "history.csv")))
-    defl = [abs(float(r[f"{control}_displacement_m"])) for r in rows]
-    load = [float(r["load_N"]) for r in rows]
-    return s, defl, load
+    s = json.loads((pathlib.Path(d) / "summary.json").read_text())
+    defl, load = sr.curve(str(d))  # the control's deflection and load, from history.csv
+    return s, list(defl), list(load)
 
 
 def load_at(defl, load, x):

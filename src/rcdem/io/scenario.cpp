@@ -301,7 +301,7 @@ Scenario convert(Reader& r, const std::string& text) {
                           : TimeStepEstimate::PerBody;
   s.solver.dt_safety = r.real("solver.dt_safety");
   // SPEC 6: safety <= 0.5 on the per-body estimate, <= 0.8 on the assembly's critical step.
-  if (s.solver.estimate == TimeStepEstimate::PerBody && s.solver.dt_safety > 0.5)
+  if (s.solver.dt_safety > max_dt_safety(s.solver.estimate))
     fail(
         "{}: key 'solver.dt_safety' = {}: with solver.time_step_estimate = \"per_body\" it must "
         "be at most 0.5 (SPEC 6); up to 0.8 needs time_step_estimate = \"assembled\"",

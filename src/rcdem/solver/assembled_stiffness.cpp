@@ -20,6 +20,8 @@ AssembledStiffness::AssembledStiffness(const Bodies& b)
   }
   zt_.resize(n);
   zr_.resize(n);
+  body_force_.resize(n);
+  body_moment_.resize(n);
 }
 
 void AssembledStiffness::add_network(const ContactNetwork& net, std::vector<Vec3> normal) {
@@ -55,7 +57,10 @@ void AssembledStiffness::apply(const Real* x, Real* y) const {
     zt_[k] = inv_sqrt_mass_[k] * Vec3(x[6 * i], x[6 * i + 1], x[6 * i + 2]);
     zr_[k] = inv_sqrt_inertia_[k] * Vec3(x[6 * i + 3], x[6 * i + 4], x[6 * i + 5]);
   });
-  std::vector<Vec3> gf(static_cast<std::size_t>(bodies_), Vec3::Zero()), gt = gf;
+  std::vector<Vec3>& gf = body_force_;
+  std::vector<Vec3>& gt = body_moment_;
+  std::fill(gf.begin(), gf.end(), Vec3::Zero());
+  std::fill(gt.begin(), gt.end(), Vec3::Zero());
   for (const Network& nw : networks_) {
     const ContactNetwork& net = *nw.net;
     // Each contact's force on b (its points' S u summed) and its moments about both centres.

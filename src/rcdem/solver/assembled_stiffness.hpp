@@ -59,8 +59,9 @@ class AssembledStiffness {
   std::vector<Network> networks_;
   std::vector<Spring> springs_;
   std::vector<Rotational> rotational_;
-  // Work space of apply(): the scaled displacements, and each contact's force and moments.
-  mutable std::vector<Vec3> zt_, zr_;
+  // Work space of apply(): the scaled displacements, each contact's force and moments, and each
+  // body's sums (K z).
+  mutable std::vector<Vec3> zt_, zr_, body_force_, body_moment_;
   mutable std::vector<Vec3> contact_force_, contact_moment_a_, contact_moment_b_;
 };
 

@@ -121,8 +121,7 @@ Simulation::Simulation(const Scenario& sc, Specimen specimen)
   compute_stable_time_step(sc.solver.added_mass_limit, sc.solver.estimate, sc.source.string());
   dt_ = sc.solver.dt_safety * stable_dt_;
   if (sc.solver.time_step > 0.0) {
-    // SPEC 6's largest safety for the estimate in use.
-    const Real most = sc.solver.estimate == TimeStepEstimate::Assembled ? 0.8 : 0.5;
+    const Real most = max_dt_safety(sc.solver.estimate);
     if (sc.solver.time_step > most * stable_dt_)
       fail(
           "{}: key 'solver.time_step' ({:.4g} s) is above the stable limit: at most {} x the "
@@ -231,14 +230,6 @@ void Simulation::compute_stable_time_step(Real added_mass_limit, TimeStepEstimat
   }
   if (!std::isfinite(l.time_step))
     fail("the specimen has no contact: no time step can be estimated");
-  // Issue 28: a step this short means a stiffness or mass far outside any material (a run would
-  // need 1e12 steps per second of loading, or fill its history with inf): refused, naming why.
-  if (!(l.time_step >= kMinimumTimeStep))
-    fail(
-        "{}: the stable time step {:.3g} s of {} {} is below {:.0e} s: it is far too stiff for its "
-        "mass; check contact.E_bar, bars.*.E, material.density and bars.*.density",
-        source, l.time_step, first >= specimen_.concrete() ? "bar cylinder" : "particle", first,
-        kMinimumTimeStep);
   const bool cylinder = first >= specimen_.concrete();
   static const char* const kWhat[] = {"rotation about body axis x", "rotation about body axis y",
                                       "rotation about body axis z"};
@@ -247,6 +238,13 @@ void Simulation::compute_stable_time_step(Real added_mass_limit, TimeStepEstimat
                                  !l.rotation ? "translation"
                                  : cylinder  ? kCylinder[l.body_axis]
                                              : kWhat[l.body_axis]);
+  // Issue 28: a step this short means a stiffness or mass far outside any material (a run would
+  // need 1e12 steps per second of loading, or fill its history with inf): refused, naming why.
+  if (!(l.time_step >= kMinimumTimeStep))
+    fail(
+        "{}: the stable time step {:.3g} s, set by {}, is below {:.0e} s: it is far too stiff "
+        "for its mass; check contact.E_bar, bars.*.E, material.density and bars.*.density",
+        source, l.time_step, stable_dt_limit_, kMinimumTimeStep);
   // Selective mass scaling (solver/selective_mass_scaling.hpp): the bodies below a common target
   // made heavier, mass and inertia alike, which lifts each one's estimate to the target exactly.
   mass_scaling_ = plan_selective_mass_scaling(steps, bodies_.mass, added_mass_limit);
