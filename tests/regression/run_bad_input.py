@@ -204,12 +204,50 @@ def extra_cases(bad_dir: Path, tmp: Path) -> list[Case]:
                       ["not empty", "--force"], [str(nonempty)], file_based=False,
                       after=old_results_kept))
 
+    cases += hostile_file_cases(tmp, valid)
+
     if os.geteuid() != 0:  # root writes into a read-only directory anyway
         readonly = tmp / "readonly_parent"
         readonly.mkdir()
         readonly.chmod(0o555)
         cases.append(Case("x_output_parent_read_only", str(valid), str(readonly / "out"),
                           ["output directory"], [str(readonly / "out")], file_based=False))
+    return cases
+
+
+def hostile_file_cases(tmp: Path, valid: Path) -> list[Case]:
+    """Files that crashed, hung or exhausted rcdem before it refused them (issue 28, 1-4)."""
+    body = valid.read_text()
+    cases = []
+
+    def scenario(name: str, text: str) -> Path:
+        path = tmp / f"{name}.toml"
+        path.write_text(text)
+        return path
+
+    levels = 50_000  # segfaulted in the TOML parser (stack overflow)
+    deep_key = scenario("deep_dotted_key", body + ".".join(["a"] * levels) + " = 1\n")
+    deep_header = scenario("deep_header", body + "[" + ".".join(["a"] * levels) + "]\n")
+    for path in (deep_key, deep_header):
+        cases.append(Case(f"x_{path.stem}", str(path), str(tmp / path.stem / "out"),
+                          ["nested more than"], [str(path)]))
+
+    fifo = tmp / "fifo.toml"
+    os.mkfifo(fifo)  # open() blocked forever
+    cases.append(Case("x_scenario_is_a_fifo", str(fifo), str(tmp / "fifo_out" / "out"),
+                      ["not a regular file"], [str(fifo)]))
+    for name, target, expect in [("fifo", "fifo.toml", "not a regular file"),
+                                 ("dev_zero", "/dev/zero", "not a regular file"),  # bad_alloc
+                                 ("dev_urandom", "/dev/urandom", "not a regular file"),
+                                 ("directory", ".", "directory"),  # read as an empty fragment
+                                 ("empty_name", "", "empty file name")]:
+        path = scenario(f"include_{name}", f'include = "{target}"\n' + body)
+        cases.append(Case(f"x_include_{name}", str(path), str(tmp / path.stem / "out"),
+                          ["key 'include'", expect], [str(path)]))
+
+    huge = scenario("oversized", body + ("# padding " * 100 + "\n") * 5000)  # 5 MB
+    cases.append(Case("x_scenario_oversized", str(huge), str(tmp / "huge_out" / "out"),
+                      ["bytes"], [str(huge)]))
     return cases
 
 

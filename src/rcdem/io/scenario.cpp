@@ -4,10 +4,10 @@
 #include <toml++/toml.h>
 
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
 #include "rcdem/core/error.hpp"
+#include "rcdem/io/scenario_text.hpp"
 #include "rcdem/specimens/specimen_geometry.hpp"
 #include "rcdem/specimens/specimen_registry.hpp"
 
@@ -435,71 +435,61 @@ Scenario convert(Reader& r, const std::string& text) {
 
 }  // namespace
 
-Scenario parse_scenario(const std::string& text, const std::string& source_name) {
-  toml::table table;
+namespace {
+
+toml::table parse_toml(const std::string& text, const std::string& source_name) {
+  io::check_scenario_nesting(text, source_name);
   try {
-    table = toml::parse(text, source_name);
+    return toml::parse(text, source_name);
   } catch (const toml::parse_error& e) {
     fail("{}:{}: TOML syntax error: {}", source_name, e.source().begin.line, e.description());
   }
-  Reader reader{io::scenario_schema(), source_name, {}, {}, {}};
-  // include = ["fragment.toml", ...]: each fragment's keys are read first (paths relative to this
-  // file), then this file's, whose values override the fragments' (e.g. a calibrated [contact]
-  // fragment with one value changed for a study).
-  if (const toml::node* inc = table.get("include")) {
-    std::vector<std::string> files;
-    if (auto one = inc->value_exact<std::string>())
-      files.push_back(*one);
-    else if (const auto* arr = inc->as_array())
-      for (const auto& e : *arr) {
-        auto f = e.value_exact<std::string>();
-        if (!f)
-          fail("{}:{}: key 'include': expected file names", source_name, inc->source().begin.line);
-        files.push_back(*f);
-      }
-    else
-      fail("{}:{}: key 'include': expected a file name or an array of them", source_name,
-           inc->source().begin.line);
-    const auto dir = std::filesystem::path(source_name).parent_path();
-    for (const auto& f : files) {
-      const auto path = std::filesystem::path(f).is_absolute() ? std::filesystem::path(f) : dir / f;
-      std::ifstream in(path, std::ios::binary);
-      if (!in)
-        fail("{}:{}: key 'include': cannot read '{}'", source_name, inc->source().begin.line,
-             path.string());
-      std::ostringstream text_in;
-      text_in << in.rdbuf();
-      toml::table sub;
-      try {
-        sub = toml::parse(text_in.str(), path.string());
-      } catch (const toml::parse_error& e) {
-        fail("{}:{}: TOML syntax error: {}", path.string(), e.source().begin.line, e.description());
-      }
-      if (sub.contains("include"))
-        fail("{}: an included file may not include others", path.string());
-      reader.file = path.string();
-      reader.read_table(sub, "");
+}
+
+// include = ["fragment.toml", ...]: each fragment's keys are read first (paths relative to this
+// file), then this file's, whose values override the fragments' (e.g. a calibrated [contact]
+// fragment with one value changed for a study).
+void read_includes(toml::table& table, const std::string& source_name, Reader& reader) {
+  const toml::node* inc = table.get("include");
+  if (!inc) return;
+  const std::string at = fmt::format("{}:{}: key 'include'", source_name, inc->source().begin.line);
+  std::vector<std::string> files;
+  if (auto one = inc->value_exact<std::string>())
+    files.push_back(*one);
+  else if (const auto* arr = inc->as_array())
+    for (const auto& e : *arr) {
+      auto f = e.value_exact<std::string>();
+      if (!f) fail("{}: expected file names", at);
+      files.push_back(*f);
     }
-    reader.file = source_name;
-    table.erase("include");
+  else
+    fail("{}: expected a file name or an array of them", at);
+  const auto dir = std::filesystem::path(source_name).parent_path();
+  for (const auto& f : files) {
+    if (f.empty()) fail("{}: an empty file name", at);
+    const auto path = std::filesystem::path(f).is_absolute() ? std::filesystem::path(f) : dir / f;
+    const toml::table sub = parse_toml(io::read_scenario_file(path, "include", at), path.string());
+    if (sub.contains("include")) fail("{}: an included file may not include others", path.string());
+    reader.file = path.string();
+    reader.read_table(sub, "");
   }
+  reader.file = source_name;
+  table.erase("include");
+}
+
+}  // namespace
+
+Scenario parse_scenario(const std::string& text, const std::string& source_name) {
+  toml::table table = parse_toml(text, source_name);
+  Reader reader{io::scenario_schema(), source_name, {}, {}, {}};
+  read_includes(table, source_name, reader);
   reader.read_table(table, "");
   reader.fill_defaults();
   return convert(reader, text);
 }
 
 Scenario load_scenario(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec))
-    fail("cannot read scenario '{}': no such file", path.string());
-  if (std::filesystem::is_directory(path, ec))
-    fail("cannot read scenario '{}': it is a directory, expected a TOML file", path.string());
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail("cannot read scenario '{}': permission denied or unreadable", path.string());
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) fail("cannot read scenario '{}': read error", path.string());
-  Scenario s = parse_scenario(buffer.str(), path.string());
+  Scenario s = parse_scenario(io::read_scenario_file(path, "scenario"), path.string());
   s.source = path;
   return s;
 }
