@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "rcdem/core/error.hpp"
+#include "rcdem/io/scenario_checks.hpp"
 #include "rcdem/io/scenario_text.hpp"
 #include "rcdem/specimens/specimen_geometry.hpp"
 #include "rcdem/specimens/specimen_registry.hpp"
@@ -73,6 +74,8 @@ struct Reader {
         const auto v = number(node);
         if (!v) bad_value(node, decl, describe_node(node), path);
         if (!in_range(*v, decl.range)) bad_value(node, decl, fmt::format("{}", *v), path);
+        if (std::fpclassify(*v) == FP_SUBNORMAL)  // below 2.2e-308: no physical value is
+          bad_value(node, decl, fmt::format("{} (a subnormal number)", *v), path);
         value = *v;
         break;
       }
@@ -109,7 +112,7 @@ struct Reader {
         for (const auto& element : *array) {
           const auto x = number(element);
           if (!x) bad_value(node, decl, describe_node(element) + " in the array", path);
-          if (!in_range(*x, decl.range))
+          if (!in_range(*x, decl.range) || std::fpclassify(*x) == FP_SUBNORMAL)
             bad_value(node, decl, fmt::format("{} in the array", *x), path);
           v.push_back(*x);
         }
@@ -240,16 +243,6 @@ void check_consistency(const Reader& r, const Scenario& s) {
         "the volume, which cannot fit below the solid fraction 1 - porosity = {:.3f}",
         r.at("generation.aggregate.content"), g.aggregate_content, g.aggregate_density,
         aggregate_fraction, 1.0 - g.porosity);
-  // Memory grows with the particle count (about 11 kB per particle with its contacts); a typo in
-  // a size should not exhaust the machine.
-  const Real mean_particle =
-      kPi / 6.0 * std::pow(0.5 * (std::min(g.aggregate_d_min, g.mortar_d_min) + g.mortar_d_max), 3);
-  const Real estimate = solid / mean_particle;
-  if (estimate > static_cast<Real>(g.max_particles))
-    fail(
-        "{}: key 'specimen.size': the specimen would hold about {:.3g} particles, more than "
-        "generation.max_particles = {}; raise that limit if this is intended",
-        r.at("specimen.size"), estimate, g.max_particles);
 }
 
 Scenario convert(Reader& r, const std::string& text) {
@@ -307,6 +300,9 @@ Scenario convert(Reader& r, const std::string& text) {
         "be at most 0.5 (SPEC 6); up to 0.8 needs time_step_estimate = \"assembled\"",
         r.at("solver.dt_safety"), s.solver.dt_safety);
   s.solver.time_step = r.real("solver.time_step");
+  if (s.solver.time_step > 0.0 && s.solver.time_step < kMinimumTimeStep)
+    fail("{}: key 'solver.time_step' = {} s: expected 0 (automatic) or at least {} s",
+         r.at("solver.time_step"), s.solver.time_step, kMinimumTimeStep);
   s.solver.damping = r.real("solver.damping");
   s.solver.mass_scaling = r.real("solver.mass_scaling");
   s.solver.added_mass_limit = r.real("solver.added_mass_limit");
@@ -429,6 +425,9 @@ Scenario convert(Reader& r, const std::string& text) {
   s.output.write_facets = r.boolean("output.write_facets");
   s.key_line = r.lines;
   check_consistency(r, s);
+  io::check_model_size(s);
+  io::check_bar_layout(s);
+  io::check_plate_layout(s);
   validate_specimen(s);
   return s;
 }

@@ -58,6 +58,10 @@ inline Real max_dt_safety(TimeStepEstimate e) {
   return e == TimeStepEstimate::Assembled ? 0.8 : 0.5;
 }
 
+// The shortest time step rcdem takes (issue 28): a step below it means a stiffness or mass far
+// outside any material, and a run would need 1e12 steps per second of loading.
+inline constexpr Real kMinimumTimeStep = 1e-12;  // s
+
 struct SolverSettings {
   Real density = 2400.0;  // kg/m^3 (material.density)
   TimeStepEstimate estimate = TimeStepEstimate::PerBody;

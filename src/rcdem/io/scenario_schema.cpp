@@ -31,8 +31,11 @@ KeyDecl typed(std::string path, KeyType type, Value def, Range range, std::strin
   return k;
 }
 
-KeyDecl positive(std::string path, std::optional<double> def, std::string unit, std::string doc) {
-  return real(std::move(path), def, Range{0.0, kInf, true, false}, std::move(unit), std::move(doc));
+// Upper bounds are far beyond any material or test (issue 28): a value above one is a typo or an
+// exponent gone wrong, and would otherwise overflow or stall a run instead of being refused here.
+KeyDecl positive(std::string path, std::optional<double> def, double max, std::string unit,
+                 std::string doc) {
+  return real(std::move(path), def, Range{0.0, max, true, false}, std::move(unit), std::move(doc));
 }
 
 KeyDecl choice(std::string path, std::optional<std::string> def, std::vector<std::string> choices,
@@ -54,16 +57,17 @@ Schema build() {
              "Specimen builder: 'box' (uniaxial cube) or 'beam' (prism, optional central notch)."));
   {
     KeyDecl k = typed("specimen.size", KeyType::RealArray, std::vector<double>{},
-                      Range{0.0, kInf, true, false},
+                      Range{0.0, 100.0, true, false},
                       "Outer dimensions [x, y, z]; for a beam [length, width, depth], z vertical.");
     k.default_value.reset();  // required
     k.array_size = 3;
     k.unit = "m";
     s.key(k);
   }
-  s.key(real("specimen.notch_depth", 0.0, Range{0.0, kInf}, "m",
+  s.key(real("specimen.notch_depth", 0.0, Range{0.0, 100.0}, "m",
              "Beam only: depth of a central notch cut up from the bottom face (0 = no notch)."));
-  s.key(positive("specimen.notch_width", 0.003, "m", "Beam only: width of the central notch."));
+  s.key(positive("specimen.notch_width", 0.003, 100.0, "m",
+                 "Beam only: width of the central notch."));
 
   s.section("generation", "Particle generation (paper 2.3, SPEC 2).");
   s.key(typed("generation.seed", KeyType::Integer, std::int64_t{1}, Range{0.0, 9.0e15},
@@ -82,12 +86,12 @@ Schema build() {
              "times its own radius to a face."));
 
   s.section("generation.aggregate", "Aggregate spheres, placed first.");
-  s.key(real("generation.aggregate.content", 568.5, Range{0.0, kInf}, "kg/m^3",
+  s.key(real("generation.aggregate.content", 568.5, Range{0.0, 1e5}, "kg/m^3",
              "Aggregate mass per cubic metre of specimen."));
-  s.key(positive("generation.aggregate.density", 2700.0, "kg/m^3",
+  s.key(positive("generation.aggregate.density", 2700.0, 1e5, "kg/m^3",
                  "Density of the aggregate, turning its mass into a volume of spheres."));
-  s.key(positive("generation.aggregate.d_min", 0.008, "m", "Smallest aggregate diameter."));
-  s.key(positive("generation.aggregate.d_max", 0.012, "m", "Largest aggregate diameter."));
+  s.key(positive("generation.aggregate.d_min", 0.008, 10.0, "m", "Smallest aggregate diameter."));
+  s.key(positive("generation.aggregate.d_max", 0.012, 10.0, "m", "Largest aggregate diameter."));
   s.key(choice("generation.aggregate.grading", std::string("uniform"), {"uniform", "fuller"},
                "Diameter distribution: 'uniform' in diameter, or 'fuller' (mass passing "
                "proportional to d^exponent)."));
@@ -96,30 +100,30 @@ Schema build() {
              "'fuller' (0.5 is Fuller-Thompson; practical curves use 0.3 to 0.7)."));
 
   s.section("generation.mortar", "Mortar spheres, added after the aggregate until the porosity.");
-  s.key(positive("generation.mortar.d_min", 0.008, "m", "Smallest mortar diameter."));
-  s.key(positive("generation.mortar.d_max", 0.009, "m", "Largest mortar diameter."));
+  s.key(positive("generation.mortar.d_min", 0.008, 10.0, "m", "Smallest mortar diameter."));
+  s.key(positive("generation.mortar.d_max", 0.009, 10.0, "m", "Largest mortar diameter."));
 
   s.section("tessellation", "VGCM-3D contact network (paper 2.1, SPEC 3).");
   s.key(choice("tessellation.kind", std::string("voronoi"), {"voronoi", "radical"},
                "'voronoi' (plain, as in the paper) or 'radical' (Laguerre, weighted by radius)."));
 
   s.section("contact", "Concrete contact parameters, paper Table 2 (SI units).");
-  s.key(positive("contact.E_bar", 48.7e9, "Pa",
+  s.key(positive("contact.E_bar", 48.7e9, 1e13, "Pa",
                  "E-bar: Young's modulus of the equivalent continuum; k_n = E_bar A_c / d (3)."));
-  s.key(real("contact.alpha", 0.3, Range{0.0, kInf}, "", "alpha: k_s = alpha k_n (4)."));
-  s.key(real("contact.mu_c", 0.5, Range{0.0, kInf}, "", "mu_c: contact friction coefficient."));
-  s.key(positive("contact.sigma_nt", 4.15e6, "Pa",
+  s.key(real("contact.alpha", 0.3, Range{0.0, 100.0}, "", "alpha: k_s = alpha k_n (4)."));
+  s.key(real("contact.mu_c", 0.5, Range{0.0, 10.0}, "", "mu_c: contact friction coefficient."));
+  s.key(positive("contact.sigma_nt", 4.15e6, 1e10, "Pa",
                  "sigma_n,t: contact tensile strength; F_n,max = sigma_n,t A_c (5)."));
-  s.key(positive("contact.tau", 21.0e6, "Pa", "tau: contact cohesion; C_max = tau A_c (6)."));
-  s.key(positive("contact.G_fn", 9.002, "J/m^2", "G_f,n: fracture energy in tension."));
-  s.key(positive("contact.G_fs", 2380.785, "J/m^2", "G_f,s: fracture energy in shear."));
+  s.key(positive("contact.tau", 21.0e6, 1e10, "Pa", "tau: contact cohesion; C_max = tau A_c (6)."));
+  s.key(positive("contact.G_fn", 9.002, 1e8, "J/m^2", "G_f,n: fracture energy in tension."));
+  s.key(positive("contact.G_fs", 2380.785, 1e8, "J/m^2", "G_f,s: fracture energy in shear."));
 
   s.key(
       choice("contact.law", std::string("BL"), {"BL", "EL"},
              "Concrete contact law: 'BL' bilinear softening (paper 2.4, SPEC 5) or 'EL' elastic."));
 
   s.section("material", "Concrete as a continuum (SPEC 6).");
-  s.key(positive("material.density", 2400.0, "kg/m^3",
+  s.key(positive("material.density", 2400.0, 1e5, "kg/m^3",
                  "Concrete density; a particle's mass is this times its Voronoi cell volume."));
 
   s.section("solver", "Explicit time integration (SPEC 6).");
@@ -131,8 +135,9 @@ Schema build() {
   s.key(real("solver.dt_safety", 0.3, Range{0.0, 0.8, true, false}, "",
              "Time step = this times the estimate: at most 0.5 with 'per_body', 0.8 with "
              "'assembled' (SPEC 6)."));
-  s.key(real("solver.time_step", 0.0, Range{0.0, kInf}, "s",
-             "Fixed time step; 0 = automatic. Refused above the estimate times 0.5 ('per_body') "
+  s.key(real("solver.time_step", 0.0, Range{0.0, 1.0}, "s",
+             "Fixed time step; 0 = automatic, else at least 1e-12 s. Refused above the estimate "
+             "times 0.5 ('per_body') "
              "or 0.8 ('assembled')."));
   s.key(real("solver.damping", 0.7, Range{0.0, 1.0, false, true}, "",
              "Local non-viscous (Cundall) damping coefficient."));
@@ -172,14 +177,14 @@ Schema build() {
     s.key(k);
   }
   s.key(
-      real("plates.*.velocity", 0.0, Range{}, "m/s",
+      real("plates.*.velocity", 0.0, Range{-1e3, 1e3}, "m/s",
            "Prescribed velocity along the face's axis (+ = towards +axis): displacement control."));
-  s.key(real("plates.*.ramp_time", 0.0, Range{0.0, kInf}, "s",
+  s.key(real("plates.*.ramp_time", 0.0, Range{0.0, 1e3}, "s",
              "The velocity rises smoothly from 0 over this time, to avoid a shock."));
   s.key(typed("plates.*.glued", KeyType::Boolean, false, Range{},
               "Glued: the contact carries tension and shear elastically (tension tests). Otherwise "
               "unilateral with Coulomb friction."));
-  s.key(real("plates.*.friction", 0.0, Range{0.0, kInf}, "",
+  s.key(real("plates.*.friction", 0.0, Range{0.0, 10.0}, "",
              "Coulomb friction coefficient of an unglued plate (0 = frictionless)."));
 
   s.section("loading", "Which plate is the load and displacement of the test.");
@@ -201,18 +206,18 @@ Schema build() {
   s.key(real("loading.damage_work_ratio", 0.5, Range{0.0, kInf, false, true}, "",
              "Adaptive rate: a crack burst, when more than this fraction of the work done over "
              "the last check (20 steps) is dissipated by damage: the factor falls."));
-  s.key(real("loading.rate_doubling_time", 2e-3, Range{0.0, kInf, false, true}, "s",
+  s.key(real("loading.rate_doubling_time", 2e-3, Range{0.0, 1e3, true, false}, "s",
              "Adaptive rate: the factor rises by about 2x over this time at most, and falls 2x "
              "in a quarter of it (about one period of the specimen's first mode or more)."));
 
   s.section("stop", "Stop rules: the run ends when any active rule triggers (0 = off).");
-  s.key(real("stop.displacement", 0.0, Range{0.0, kInf}, "m",
+  s.key(real("stop.displacement", 0.0, Range{0.0, 100.0}, "m",
              "Stop when the control plate has moved this far."));
   s.key(real("stop.load_drop", 0.0, Range{0.0, 1.0, false, true}, "",
              "Stop once the load has fallen below this fraction of its peak, after the peak."));
-  s.key(real("stop.post_peak_displacement", 0.0, Range{0.0, kInf}, "m",
+  s.key(real("stop.post_peak_displacement", 0.0, Range{0.0, 100.0}, "m",
              "Stop once the control plate has moved this far past the peak load's position."));
-  s.key(real("stop.time", 0.0, Range{0.0, kInf}, "s", "Stop at this simulated time."));
+  s.key(real("stop.time", 0.0, Range{0.0, 1e6}, "s", "Stop at this simulated time."));
   s.key(typed("stop.steps", KeyType::Integer, std::int64_t{0}, Range{0.0, 1.0e12},
               "Stop after this many steps."));
 
@@ -230,29 +235,29 @@ Schema build() {
     k.doc = "Last end of the bar's axis [x, y, z].";
     s.key(k);
   }
-  s.key(positive("bars.*.diameter", std::nullopt, "m", "Bar diameter D."));
-  s.key(positive("bars.*.cylinder_length", 0.032, "m",
+  s.key(positive("bars.*.diameter", std::nullopt, 10.0, "m", "Bar diameter D."));
+  s.key(positive("bars.*.cylinder_length", 0.032, 100.0, "m",
                  "Target length of the rigid cylinders (the bar is cut into equal ones)."));
-  s.key(positive("bars.*.E", 200.0e9, "Pa", "Young's modulus of the steel."));
+  s.key(positive("bars.*.E", 200.0e9, 1e13, "Pa", "Young's modulus of the steel."));
   s.key(real("bars.*.nu", 0.3, Range{0.0, 0.5, false, true}, "",
              "Poisson's ratio of the steel (G = E / (2 (1 + nu)))."));
-  s.key(positive("bars.*.f_y", std::nullopt, "Pa",
+  s.key(positive("bars.*.f_y", std::nullopt, 1e11, "Pa",
                  "Yield stress: the axial force plateaus at f_y A."));
-  s.key(positive("bars.*.density", 7850.0, "kg/m^3", "Density of the steel."));
+  s.key(positive("bars.*.density", 7850.0, 1e5, "kg/m^3", "Density of the steel."));
   s.key(choice("bars.*.interface", std::string("NL-B"), {"EL", "NL-A", "NL-B"},
                "Steel-concrete interface law: 'EL' elastic, 'NL-A' BL with the concrete's "
                "parameters, 'NL-B' BL with sigma_n,t and tau halved (paper 3, Table 3)."));
-  s.key(real("bars.*.interface_strength_scale", 1.0, Range{0.0, kInf, true, false}, "",
+  s.key(real("bars.*.interface_strength_scale", 1.0, Range{0.0, 1e6, true, false}, "",
              "Multiplies sigma_n,t and tau of a BL interface (NL-A, NL-B; after NL-B's halving): "
              "for studies of the bond beyond the paper's two variants."));
-  s.key(real("bars.*.interface_energy_scale", 1.0, Range{0.0, kInf, true, false}, "",
+  s.key(real("bars.*.interface_energy_scale", 1.0, Range{0.0, 1e6, true, false}, "",
              "Multiplies G_fn and G_fs of a BL interface (NL-A, NL-B)."));
-  s.key(real("bars.*.pull_velocity", 0.0, Range{0.0, kInf}, "m/s",
+  s.key(real("bars.*.pull_velocity", 0.0, Range{0.0, 1e3}, "m/s",
              "Pull-out: the bar's first cylinder (at 'start') is moved at this speed along end -> "
              "start, its rotation held (0 = not pulled)."));
-  s.key(real("bars.*.pull_ramp_time", 0.0, Range{0.0, kInf}, "s",
+  s.key(real("bars.*.pull_ramp_time", 0.0, Range{0.0, 1e3}, "s",
              "The pull speed rises smoothly from 0 over this time."));
-  s.key(real("bars.*.sphere_spacing", 0.0, Range{0.0, kInf}, "m",
+  s.key(real("bars.*.sphere_spacing", 0.0, Range{0.0, 10.0}, "m",
              "Spacing of the interface spheres along each cylinder; 0 = D / 2."));
 
   s.section("output", "What is written and how.");

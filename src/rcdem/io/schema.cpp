@@ -84,10 +84,10 @@ std::string describe_range(const Range& r) {
   const bool has_min = std::isfinite(r.min);
   const bool has_max = std::isfinite(r.max);
   if (has_min && has_max)
-    return fmt::format("in {}{}, {}{}", r.min_exclusive ? "(" : "[", r.min, r.max,
+    return fmt::format("in {}{:g}, {:g}{}", r.min_exclusive ? "(" : "[", r.min, r.max,
                        r.max_exclusive ? ")" : "]");
-  if (has_min) return fmt::format("{} {}", r.min_exclusive ? ">" : ">=", r.min);
-  if (has_max) return fmt::format("{} {}", r.max_exclusive ? "<" : "<=", r.max);
+  if (has_min) return fmt::format("{} {:g}", r.min_exclusive ? ">" : ">=", r.min);
+  if (has_max) return fmt::format("{} {:g}", r.max_exclusive ? "<" : "<=", r.max);
   return "";
 }
 

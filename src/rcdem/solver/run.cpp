@@ -30,6 +30,7 @@
 #include "rcdem/io/plot_tool.hpp"
 #include "rcdem/io/run_manifest.hpp"
 #include "rcdem/io/run_output.hpp"
+#include "rcdem/io/scenario_checks.hpp"
 #include "rcdem/io/specimen_output.hpp"
 #include "rcdem/solver/run_signals.hpp"
 
@@ -47,11 +48,7 @@ using io::thread_count;
 
 namespace {
 
-std::string at(const Scenario& s, const std::string& key) {
-  const auto it = s.key_line.find(key);
-  return it == s.key_line.end() ? s.source.string()
-                                : fmt::format("{}:{}", s.source.string(), it->second);
-}
+std::string at(const Scenario& s, const std::string& key) { return io::key_location(s, key); }
 
 const PlateSettings* find(const Scenario& s, const std::string& name) {
   for (const auto& p : s.plates)
@@ -80,6 +77,17 @@ void validate_run(const Scenario& s) {
         at(s, s.stop.displacement > 0.0
                   ? "stop.displacement"
                   : (s.stop.load_drop > 0.0 ? "stop.load_drop" : "stop.post_peak_displacement")));
+  // An unglued plate only pushes: moving off its face it never touches the specimen again, and
+  // the run would "succeed" with no load (issue 28).
+  for (const auto& p : s.plates)
+    if (!p.glued && p.velocity * p.side > 0.0)
+      fail(
+          "{}: plate '{}' moves away from the specimen (velocity {} m/s on the face {}{}, whose "
+          "inward normal points to {}{}): an unglued plate only pushes; expected a velocity of the "
+          "other sign, or glued = true to pull",
+          at(s, "plates." + p.name + ".velocity"), p.name, p.velocity,
+          static_cast<char>('x' + p.axis), p.side < 0 ? '-' : '+', p.side < 0 ? '+' : '-',
+          static_cast<char>('x' + p.axis));
   bool moving = false;
   for (const auto& p : s.plates) moving |= p.velocity != 0.0;
   for (const auto& b : s.bars) moving |= b.pull_velocity > 0.0;

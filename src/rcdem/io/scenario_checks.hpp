@@ -1,0 +1,38 @@
+#pragma once
+// Checks across a converted scenario's keys that its values, each admissible on its own, make a
+// model that can be built: how many bodies and how much memory it needs, whether its bars overlap
+// each other or the notch, whether its plates overlap. Each refusal is an Error naming the file,
+// line and key (Scenario::key_line) and what was expected.
+#include <cstdint>
+#include <string>
+
+#include "rcdem/io/scenario.hpp"
+
+namespace rcdem::io {
+
+// A run's peak memory per body (particle or interface sphere), measured: the full AN4 NL-B beam
+// (26,478 particles, 171,668 contacts) peaks at 452 MB resident after 20 steps, 17 kB each.
+inline constexpr double kBytesPerParticle = 17.0e3;
+// More plates or bars than any test needs is a typo or a generated file gone wrong; the bar
+// checks are pairwise.
+inline constexpr int kMaxPlates = 64;
+inline constexpr int kMaxBars = 4096;
+
+// "file:line" where `key` was set, or the file alone for a default.
+std::string key_location(const Scenario& s, const std::string& key);
+
+// The concrete particles a specimen will hold, estimated from its solid volume and mean size.
+double estimated_concrete_particles(const Scenario& s);
+
+// Bodies (particles, interface spheres, cylinders) against generation.max_particles, and their
+// memory against this machine's physical memory.
+void check_model_size(const Scenario& s);
+
+// Bars against one another (their steel may not overlap: axes at least r1 + r2 apart) and
+// against the notch (no bar may cut through it).
+void check_bar_layout(const Scenario& s);
+
+// Plates: at most kMaxPlates, and no two on one face whose rectangles overlap.
+void check_plate_layout(const Scenario& s);
+
+}  // namespace rcdem::io
