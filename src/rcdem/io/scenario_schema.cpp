@@ -108,9 +108,10 @@ Schema build() {
                "'voronoi' (plain, as in the paper) or 'radical' (Laguerre, weighted by radius)."));
 
   s.section("contact", "Concrete contact parameters, paper Table 2 (SI units).");
-  s.key(positive("contact.E_bar", 48.7e9, 1e13, "Pa",
-                 "E-bar: Young's modulus of the equivalent continuum; k_n = E_bar A_c / d (3)."));
-  s.key(real("contact.alpha", 0.3, Range{0.0, 100.0}, "", "alpha: k_s = alpha k_n (4)."));
+  s.key(real("contact.E_bar", 48.7e9, Range{1e3, 1e13}, "Pa",
+             "E-bar: Young's modulus of the equivalent continuum; k_n = E_bar A_c / d (3)."));
+  s.key(real("contact.alpha", 0.3, Range{0.0, 100.0, true, false}, "",
+             "alpha: k_s = alpha k_n (4); > 0, the BL law divides by k_s."));
   s.key(real("contact.mu_c", 0.5, Range{0.0, 10.0}, "", "mu_c: contact friction coefficient."));
   s.key(positive("contact.sigma_nt", 4.15e6, 1e10, "Pa",
                  "sigma_n,t: contact tensile strength; F_n,max = sigma_n,t A_c (5)."));
@@ -238,7 +239,7 @@ Schema build() {
   s.key(positive("bars.*.diameter", std::nullopt, 10.0, "m", "Bar diameter D."));
   s.key(positive("bars.*.cylinder_length", 0.032, 100.0, "m",
                  "Target length of the rigid cylinders (the bar is cut into equal ones)."));
-  s.key(positive("bars.*.E", 200.0e9, 1e13, "Pa", "Young's modulus of the steel."));
+  s.key(real("bars.*.E", 200.0e9, Range{1e3, 1e13}, "Pa", "Young's modulus of the steel."));
   s.key(real("bars.*.nu", 0.3, Range{0.0, 0.5, false, true}, "",
              "Poisson's ratio of the steel (G = E / (2 (1 + nu)))."));
   s.key(positive("bars.*.f_y", std::nullopt, 1e11, "Pa",

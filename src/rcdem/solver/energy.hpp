@@ -18,6 +18,10 @@ struct Energy {
   Real plastic = 0.0;   // dissipated by the bars' yielding (cumulative)
 
   Real dissipated() const { return damage + friction + damping + plastic; }
+  bool finite() const {
+    return std::isfinite(external_work) && std::isfinite(strain) && std::isfinite(kinetic) &&
+           std::isfinite(dissipated());
+  }
   Real stored_and_lost() const { return strain + kinetic + dissipated(); }
   // |W - (E_s + E_k + D)| relative to the larger of W and the right-hand side.
   Real balance_error() const {

@@ -56,6 +56,28 @@ const PlateSettings* find(const Scenario& s, const std::string& name) {
   return nullptr;
 }
 
+// Issue 28: a state that is no longer finite stops the run, naming the first body that went.
+void check_finite(const Simulation& sim, Real load, Real displacement) {
+  const Energy& e = sim.ledger();
+  if (std::isfinite(load) && std::isfinite(displacement) && e.finite()) return;
+  const Bodies& b = sim.bodies();
+  std::string where = "no body's position or velocity is";
+  for (Index i = 0; i < b.size(); ++i)
+    if (!b.position[i].allFinite() || !b.velocity[i].allFinite() ||
+        !b.angular_velocity[i].allFinite()) {
+      where = fmt::format("body {} ({}) is the first that is not", i,
+                          i < sim.specimen().concrete() ? "particle" : "bar cylinder");
+      break;
+    }
+  fail(
+      "non-finite state at step {} (t = {:.6g} s): load {} N, displacement {} m, external work "
+      "{} J, strain {} J, kinetic {} J, dissipated {} J; {}: the stiffnesses, masses or loading "
+      "are outside what "
+      "the scenario's time step can integrate",
+      sim.steps(), sim.time(), load, displacement, e.external_work, e.strain, e.kinetic,
+      e.dissipated(), where);
+}
+
 }  // namespace
 
 void validate_run(const Scenario& s) {
@@ -376,9 +398,21 @@ RunSummary run_scenario(const Scenario& sc, const fs::path& out, const RunOption
 
     signals.loop();
     for (;;) {
-      sim.step();
+      Real load = 0.0;
+      try {
+        sim.step();
+        load = control_load();
+        check_finite(sim, load, control_displacement());
+      } catch (const Error& e) {
+        // What the run recorded up to the failure is kept for the diagnosis.
+        try {
+          history.write(out / "history.csv");
+        } catch (const Error&) {
+        }
+        throw Error(fmt::format("{} (history.csv is kept, up to step {})", e.what(),
+                                history.rows() ? history.data().back()[0] : 0.0));
+      }
       if (on_step) on_step(sim);
-      const Real load = control_load();
       if (load > peak) {
         peak = load;
         r.peak_load = load;
