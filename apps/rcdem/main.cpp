@@ -40,13 +40,9 @@ int generate(const fs::path& scenario_path, fs::path out, bool force) {
   const auto start = std::chrono::steady_clock::now();
   const rcdem::Scenario scenario = rcdem::load_scenario(scenario_path);
   if (out.empty()) out = default_output(scenario_path);
-  const bool created = rcdem::io::prepare_output_directory(out, force);
-  try {
-    write_specimen(scenario, out, start);
-  } catch (...) {
-    rcdem::io::remove_if_created_and_empty(out, created);
-    throw;
-  }
+  rcdem::io::OutputDirectory dir(out, force);
+  write_specimen(scenario, out, start);
+  dir.commit();
   return 0;
 }
 
@@ -147,13 +143,10 @@ int run(const fs::path& scenario_path, fs::path out, bool force, const fs::path&
     const rcdem::Scenario scenario = rcdem::load_scenario(scenario_path);
     rcdem::validate_run(scenario);
     if (out.empty()) out = default_output(scenario_path);
-    const bool created = rcdem::io::prepare_output_directory(out, force);
-    try {
-      r = rcdem::run_scenario(scenario, out, options);
-    } catch (...) {
-      rcdem::io::remove_if_created_and_empty(out, created);
-      throw;
-    }
+    rcdem::io::OutputDirectory dir(out, force);
+    options.lock_held = true;
+    options.on_started = [&dir] { dir.commit(); };
+    r = rcdem::run_scenario(scenario, out, options);
   }
   // Interrupted: the shell's convention for a death by that signal (130 for SIGINT).
   return r.stop_reason == "interrupted" ? 128 + r.signal : 0;
@@ -215,8 +208,9 @@ int calibrate(const fs::path& scenario_path, fs::path out, bool force, double si
     rcdem::fail("--size {} m: a cube needs at least four of the largest diameters ({} m) per side",
                 size, 4.0 * largest);
   if (out.empty()) out = fs::path("results") / ("calibrate_" + scenario_path.stem().string());
-  const bool created = rcdem::io::prepare_output_directory(out, force);
-  try {
+  rcdem::io::OutputDirectory dir(out, force);
+  dir.commit();  // a calibration's partial outputs (its iterations) are kept if it fails
+  {
     const auto r = rcdem::calibrate(base, opt, out);
     fmt::print(
         "E = {:.4g} GPa, nu = {:.4f}, sigma_c = {:.4g} MPa, sigma_t = {:.4g} MPa "
@@ -225,9 +219,6 @@ int calibrate(const fs::path& scenario_path, fs::path out, bool force, double si
         r.measured.sigma_c / r.measured.sigma_t,
         opt.target ? (r.converged ? "; converged" : "; NOT converged") : "", out.string());
     return opt.target && !r.converged ? 4 : 0;
-  } catch (...) {
-    rcdem::io::remove_if_created_and_empty(out, created);
-    throw;
   }
 }
 
@@ -256,7 +247,7 @@ int study(const std::string& name, fs::path scenarios, fs::path out, bool force,
         "output directory '{}' is not empty and holds no study (study.json); use --force to "
         "write into it",
         out.string());
-  rcdem::io::prepare_output_directory(out, true);
+  rcdem::io::prepare_output_directory(out);
   const int failed = rcdem::run_study(o);
   return failed == 0 ? 0 : failed < 0 ? 130 : 5;
 }

@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <fmt/format.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <toml++/toml.h>
 #include <unistd.h>
 
@@ -11,6 +12,7 @@
 #include <ctime>
 #include <fstream>
 #include <sstream>
+#include <utility>
 
 #if defined(_OPENMP)
 #include <omp.h>
@@ -26,16 +28,31 @@ namespace fs = std::filesystem;
 
 RunLock::RunLock(const fs::path& dir, bool on) : path_(dir / "run.lock") {
   if (!on) return;
-  fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (fd_ < 0)
-    fail("cannot write in the run directory '{}': {}", dir.string(), std::strerror(errno));
-  if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+  // The holder unlinks the file when it is done, so a lock taken on a file that has since been
+  // unlinked (or replaced) guards nothing: take it again on the file now at the path.
+  for (int attempt = 0; attempt < 100 && fd_ < 0; ++attempt) {
+    fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd_ < 0)
+      fail("cannot write in the run directory '{}': {}", dir.string(), std::strerror(errno));
+    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+      ::close(fd_);
+      fd_ = -1;
+      fail("another rcdem is running in '{}' (it holds run.lock); wait for it or stop it first",
+           dir.string());
+    }
+    struct stat held {
+    }, now{};
+    if (::fstat(fd_, &held) == 0 && ::stat(path_.c_str(), &now) == 0 && held.st_ino == now.st_ino &&
+        held.st_dev == now.st_dev)
+      return;
     ::close(fd_);
     fd_ = -1;
-    fail("another rcdem is running in '{}' (it holds run.lock); wait for it or stop it first",
-         dir.string());
   }
+  fail("cannot lock the run directory '{}': run.lock keeps changing", dir.string());
 }
+
+RunLock::RunLock(RunLock&& other) noexcept
+    : path_(std::move(other.path_)), fd_(std::exchange(other.fd_, -1)) {}
 
 RunLock::~RunLock() {
   if (fd_ < 0) return;

@@ -8,14 +8,17 @@
 
 namespace rcdem::io {
 
-// flock on DIR/run.lock while the run goes on (released by the kernel however the process ends):
-// a second `rcdem run --resume DIR` beside a live one is refused instead of mixing files.
+// flock on DIR/run.lock while a command works in DIR (released by the kernel however the process
+// ends): a second rcdem in a live run's or study's directory (--resume, --force, generate, a
+// second study) is refused instead of mixing files. Unlinked when released.
 class RunLock {
  public:
   RunLock(const std::filesystem::path& dir, bool on);
+  RunLock(RunLock&& other) noexcept;
   ~RunLock();
   RunLock(const RunLock&) = delete;
   RunLock& operator=(const RunLock&) = delete;
+  RunLock& operator=(RunLock&&) = delete;
 
  private:
   std::filesystem::path path_;
@@ -52,7 +55,7 @@ Inputs scenario_inputs(const std::string& text, const std::filesystem::path& fil
 
 std::string iso_now();  // UTC, ISO 8601
 int thread_count();     // OpenMP threads a run will use (1 without OpenMP)
-std::string read_text(const std::filesystem::path& p);  // "" if unreadable
+std::string read_text(const std::filesystem::path& p);            // "" if unreadable
 void remove_stale_temporaries(const std::filesystem::path& dir);  // *.tmp.* of DIR, DIR/snapshots
 
 }  // namespace rcdem::io

@@ -130,6 +130,9 @@ void validate_run(const Scenario& s) {
 Scenario run_directory_scenario(const fs::path& dir) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) fail("--resume '{}': no such run directory", dir.string());
+  if (!fs::exists(dir / "manifest.json", ec))
+    fail("--resume '{}': not a run directory (no manifest.json; generate and calibrate write none)",
+         dir.string());
   if (fs::exists(dir / "summary.json", ec))
     fail(
         "--resume '{}': that run has finished (it has summary.json); nothing to resume (rerun it "
@@ -166,7 +169,7 @@ RunSummary run_scenario(const Scenario& sc, const fs::path& out, const RunOption
   const auto wall_start = std::chrono::steady_clock::now();
   const bool checkpoints = opt.resume || opt.handle_signals || opt.checkpoint_every_steps > 0 ||
                            opt.checkpoint_every_seconds > 0.0;
-  RunLock lock(out, checkpoints);
+  RunLock lock(out, checkpoints && !opt.lock_held);
   SignalGuard signals(opt.handle_signals, out / "run.lock", opt.resume);
   const bool quiet = Progress::quiet_default();
 
@@ -277,6 +280,7 @@ RunSummary run_scenario(const Scenario& sc, const fs::path& out, const RunOption
     }
     manifest.write();
     manifest_started = true;
+    if (opt.on_started) opt.on_started();
     if (!quiet)
       fmt::print(stderr,
                  "time step {:.4g} s (stable estimate {:.4g} s, set by {}; safety {}); {} bodies, "

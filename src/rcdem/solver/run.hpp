@@ -45,6 +45,11 @@ struct RunOptions {
   bool keep_checkpoints = false;
   // manifest.json in `out` (docs/checkpoint.md).
   bool manifest = true;
+  // The caller holds `out`'s run.lock (io::OutputDirectory), so the run takes none of its own.
+  bool lock_held = false;
+  // Called once the set-up has passed every check and the run's first files are written: the
+  // run has started cleanly (io::OutputDirectory::commit).
+  std::function<void()> on_started;
   std::vector<std::string> command;  // the command line, for the manifest
 };
 

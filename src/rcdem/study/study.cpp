@@ -1,15 +1,14 @@
 #include "rcdem/study/study.hpp"
 
-#include <fmt/format.h>
-
 #include <fcntl.h>
+#include <fmt/format.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <csignal>
 #include <cerrno>
+#include <csignal>
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -21,6 +20,7 @@
 #include "rcdem/io/atomic_file.hpp"
 #include "rcdem/io/checkpoint.hpp"
 #include "rcdem/io/plot_tool.hpp"
+#include "rcdem/io/run_manifest.hpp"
 #include "rcdem/io/scenario.hpp"
 #include "rcdem/solver/run.hpp"
 
@@ -51,9 +51,12 @@ std::vector<fs::path> list_scenarios(const fs::path& dir) {
 std::string interface_name(const Scenario& s) {
   if (s.bars.empty()) return "none";
   switch (s.bars.front().interface) {
-    case InterfaceLaw::EL: return "EL";
-    case InterfaceLaw::NL_A: return "NL-A";
-    case InterfaceLaw::NL_B: return "NL-B";
+    case InterfaceLaw::EL:
+      return "EL";
+    case InterfaceLaw::NL_A:
+      return "NL-A";
+    case InterfaceLaw::NL_B:
+      return "NL-B";
   }
   return "none";
 }
@@ -64,8 +67,8 @@ nlohmann::json read_json(const fs::path& file) {
   try {
     in >> j;
   } catch (const std::exception& e) {
-    fail("{}: not a readable summary ({}); delete the case's directory to rerun it",
-         file.string(), e.what());
+    fail("{}: not a readable summary ({}); delete the case's directory to rerun it", file.string(),
+         e.what());
   }
   return j;
 }
@@ -93,12 +96,11 @@ void write_tables(const fs::path& out, const std::vector<CaseRecord>& cases,
       const auto& s = c.summary;
       peaks += fmt::format("{},{},{:.9g},{:.9g}\n", c.model, c.interface,
                            s.value("peak_load_N", 0.0), s.value("displacement_at_peak_m", 0.0));
-      table += fmt::format("{},{},{},{},{},{},{:.6g},{:.1f},{:.9g},{:.9g},{:.3g}\n", c.name,
-                           c.model, c.interface, c.status, s.value("stop_reason", ""),
-                           s.value("steps", 0L), s.value("time_step_s", 0.0),
-                           s.value("seconds", 0.0), s.value("peak_load_N", 0.0),
-                           s.value("displacement_at_peak_m", 0.0),
-                           s["energy"].value("balance_error", 0.0));
+      table += fmt::format(
+          "{},{},{},{},{},{},{:.6g},{:.1f},{:.9g},{:.9g},{:.3g}\n", c.name, c.model, c.interface,
+          c.status, s.value("stop_reason", ""), s.value("steps", 0L), s.value("time_step_s", 0.0),
+          s.value("seconds", 0.0), s.value("peak_load_N", 0.0),
+          s.value("displacement_at_peak_m", 0.0), s["energy"].value("balance_error", 0.0));
       jc["wall_time_s"] = s.value("seconds", 0.0);
     } else {
       table += fmt::format("{},{},{},{},,,,,,,\n", c.name, c.model, c.interface, c.status);
@@ -124,8 +126,8 @@ pid_t spawn_run(const fs::path& scenario, const fs::path& dir, int threads, bool
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
   std::vector<std::string> args =
       resume ? std::vector<std::string>{"rcdem", "run", "--resume", dir.string()}
-             : std::vector<std::string>{"rcdem", "run", scenario.string(), "-o", dir.string(),
-                                        "--force"};
+             : std::vector<std::string>{"rcdem", "run",        scenario.string(),
+                                        "-o",    dir.string(), "--force"};
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -160,15 +162,17 @@ std::string last_line(const fs::path& file) {
 fs::path builtin_study_scenarios(const std::string& name, bool quick) {
   if (std::find(std::begin(kBuiltinStudies), std::end(kBuiltinStudies), name) ==
       std::end(kBuiltinStudies))
-    fail("unknown study '{}': the built-in studies are: three_point_bending (or give a directory "
-         "of scenarios with --scenarios)",
-         name);
+    fail(
+        "unknown study '{}': the built-in studies are: three_point_bending (or give a directory "
+        "of scenarios with --scenarios)",
+        name);
   const fs::path rel = fs::path("examples") / name / "study" / (quick ? "quick" : "");
   for (const fs::path& root : {fs::path("."), fs::path(RCDEM_SOURCE_DIR)})
     if (fs::is_directory(root / rel)) return (root / rel).lexically_normal();
-  fail("study '{}': its scenarios ({}) are neither under the working directory nor under the "
-       "source tree {}",
-       name, rel.string(), RCDEM_SOURCE_DIR);
+  fail(
+      "study '{}': its scenarios ({}) are neither under the working directory nor under the "
+      "source tree {}",
+      name, rel.string(), RCDEM_SOURCE_DIR);
 }
 
 int run_study(const StudyOptions& o) {
@@ -194,6 +198,8 @@ int run_study(const StudyOptions& o) {
   std::error_code ec;
   fs::create_directories(o.out / "cases", ec);
   if (ec) fail("{}: cannot create the study's directory: {}", o.out.string(), ec.message());
+  // One study at a time in a directory: a second one would clear the first's cases as it sets up.
+  const io::RunLock study_lock(o.out, true);
 
   const bool quiet = Progress::quiet_default();
   std::vector<CaseRecord> records;
@@ -226,6 +232,9 @@ int run_study(const StudyOptions& o) {
   const auto prepare = [&](std::size_t i) {
     const fs::path dir = o.out / "cases" / records[i].name;
     std::error_code e;
+    if (fs::exists(dir)) {
+      const io::RunLock idle(dir, true);  // refused while a run started by hand is live in it
+    }
     if (fs::exists(dir)) fs::remove_all(dir, e);
     if (e) fail("{}: cannot clear the interrupted case: {}", dir.string(), e.message());
     fs::create_directories(dir);
@@ -238,8 +247,8 @@ int run_study(const StudyOptions& o) {
       rec.summary = read_json(o.out / "cases" / rec.name / "summary.json");
       rec.status = "finished";
       if (!quiet)
-        fmt::print(stderr, "[{}/{}] {}: finished, peak {:.4g} kN, {:.0f} s\n", done,
-                   pending.size(), rec.name, rec.summary.value("peak_load_N", 0.0) / 1e3,
+        fmt::print(stderr, "[{}/{}] {}: finished, peak {:.4g} kN, {:.0f} s\n", done, pending.size(),
+                   rec.name, rec.summary.value("peak_load_N", 0.0) / 1e3,
                    rec.summary.value("seconds", 0.0));
     } else {
       // One case failing (an instability, say) should not cost the others.
@@ -259,7 +268,8 @@ int run_study(const StudyOptions& o) {
     struct sigaction sa {};
     sa.sa_handler = on_study_signal;  // no SA_RESTART: waitpid returns EINTR
     sigemptyset(&sa.sa_mask);
-    struct sigaction old_int {}, old_term {};
+    struct sigaction old_int {
+    }, old_term{};
     ::sigaction(SIGINT, &sa, &old_int);
     ::sigaction(SIGTERM, &sa, &old_term);
     std::map<pid_t, std::size_t> running;
@@ -270,12 +280,12 @@ int run_study(const StudyOptions& o) {
         const fs::path existing = o.out / "cases" / records[i].name;
         const bool resume = !o.force && fs::exists(existing / "scenario.toml") &&
                             !io::list_checkpoints(existing).empty();
-        const fs::path dir = resume ? existing : prepare(i);
-        if (!quiet)
-          fmt::print(stderr, "{}: {} ({}; log {})\n", records[i].name,
-                     resume ? "resumed from its last checkpoint" : "started",
-                     todo[i].first.string(), (dir / "run.log").string());
         try {
+          const fs::path dir = resume ? existing : prepare(i);
+          if (!quiet)
+            fmt::print(stderr, "{}: {} ({}; log {})\n", records[i].name,
+                       resume ? "resumed from its last checkpoint" : "started",
+                       todo[i].first.string(), (dir / "run.log").string());
           running[spawn_run(todo[i].first, dir, o.threads_per_job, resume)] = i;
         } catch (const Error& e) {
           finish(i, e.what());
@@ -298,8 +308,8 @@ int run_study(const StudyOptions& o) {
       const std::size_t i = it->second;
       running.erase(it);
       const fs::path dir = o.out / "cases" / records[i].name;
-      const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0 &&
-                      fs::exists(dir / "summary.json");
+      const bool ok =
+          WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(dir / "summary.json");
       if (!ok && g_study_signal != 0) {
         ++done;
         records[i].status = "interrupted";
