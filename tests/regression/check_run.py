@@ -102,4 +102,39 @@ with tempfile.TemporaryDirectory() as tmp:
           f"stopped by post_peak_displacement {past * 1e6:.3f} um past the peak "
           f"({s['stop_reason']})")
 
+    # Legal but suspicious (issue 28): a glued plate pulling a specimen that nothing holds only
+    # accelerates it, so the load stays at its inertia (0.3% of the expected): a warning, printed
+    # and in summary.json. The sound runs above have none.
+    check(json.load(open(os.path.join(tmp, "run", "summary.json")))["warnings"] == [],
+          "a sound run has no warnings")
+    floating = os.path.join(tmp, "floating.toml")
+    open(floating, "w").write("""[specimen]
+shape = "box"
+size = [0.05, 0.05, 0.05]
+[generation]
+seed = 3
+relaxation_iterations = 30
+[solver]
+mass_scaling = 100
+damping = 0.0
+[plates.top]
+face = "z+"
+glued = true
+velocity = 0.1
+ramp_time = 0.1
+[loading]
+control_plate = "top"
+[stop]
+displacement = 1e-4
+[output]
+snapshots = 0
+""")
+    out = os.path.join(tmp, "floating")
+    r = subprocess.run([rcdem, "run", floating, "-o", out], capture_output=True, text=True,
+                       timeout=600)
+    warnings = json.load(open(os.path.join(out, "summary.json")))["warnings"]
+    check(r.returncode == 0 and len(warnings) == 1 and "never rose" in warnings[0]
+          and f"rcdem: warning: {warnings[0]}" in r.stderr,
+          f"a specimen pulled by its only plate: one warning, printed and kept ({warnings})")
+
 checks.finish()

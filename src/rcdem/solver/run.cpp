@@ -33,6 +33,7 @@
 #include "rcdem/io/scenario_checks.hpp"
 #include "rcdem/io/specimen_output.hpp"
 #include "rcdem/solver/run_signals.hpp"
+#include "rcdem/solver/run_warnings.hpp"
 
 namespace rcdem {
 
@@ -565,6 +566,14 @@ RunSummary run_scenario(const Scenario& sc, const fs::path& out, const RunOption
     j["local_points"] = sim.specimen().contacts.point_count();
     j["specimen"] = io::specimen_summary(sc, sim.specimen());
     j["gauges"] = history.gauges().summary();
+    RunOutcome outcome;
+    set_expectation(sc, outcome);
+    outcome.peak_load = r.peak_load;
+    outcome.control_travel = std::abs(control_displacement());
+    outcome.balance_error = e.balance_error();
+    j["warnings"] = suspicious_run_warnings(outcome);
+    for (const auto& w : j["warnings"])
+      fmt::print(stderr, "rcdem: warning: {}\n", w.get<std::string>());
     // Wall-clock figures cover every session up to the state each handed on (a resumed run:
     // up to its checkpoint), so they may differ between otherwise identical runs.
     const double loop_s = loop_before + std::chrono::duration<double>(end - loop_start).count();

@@ -1,0 +1,48 @@
+#include "rcdem/solver/run_warnings.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace rcdem {
+
+void set_expectation(const Scenario& sc, RunOutcome& o) {
+  for (const auto& p : sc.plates) {
+    if (p.name != sc.control_plate) continue;
+    const int u = p.axis == 0 ? 1 : 0, v = p.axis == 2 ? 1 : 2;
+    const Vec3& size = sc.specimen.size;
+    const auto side = [&](int axis, std::size_t lo) {
+      return p.extent.empty()
+                 ? size[axis]
+                 : std::min(p.extent[lo + 1], size[axis]) - std::max(p.extent[lo], 0.0);
+    };
+    o.expected_load = sc.contact.sigma_nt * side(u, 0) * side(v, 2);
+    o.loaded_travel = 10.0 * sc.contact.sigma_nt / sc.contact.E_bar * size[p.axis];
+  }
+  for (const auto& b : sc.bars) {
+    if (b.name != sc.control_bar) continue;
+    o.expected_load = b.f_y * kPi / 4.0 * b.diameter * b.diameter;
+    o.loaded_travel = 10.0 * b.f_y / b.E * (b.end - b.start).norm();
+  }
+}
+
+std::vector<std::string> suspicious_run_warnings(const RunOutcome& o) {
+  std::vector<std::string> w;
+  if (o.expected_load > 0.0 && o.control_travel >= o.loaded_travel &&
+      !(std::abs(o.peak_load) >= kSmallLoadFraction * o.expected_load))
+    w.push_back(fmt::format(
+        "the load never rose above {:.3g} N, {:.2g}% of the {:.3g} N expected once the control "
+        "has moved {:.3g} m (it moved {:.3g} m): does the control plate or bar load the "
+        "specimen?",
+        o.peak_load, 100.0 * std::abs(o.peak_load) / o.expected_load, o.expected_load,
+        o.loaded_travel, o.control_travel));
+  if (!(o.balance_error <= kLargeBalanceError))
+    w.push_back(fmt::format(
+        "the energy balance is off by {:.3g}% at the end (a sound run keeps it below 0.01%): the "
+        "time step or the loading is too coarse for this run",
+        100.0 * o.balance_error));
+  return w;
+}
+
+}  // namespace rcdem
