@@ -1,10 +1,12 @@
 #!/usr/bin/python3
 """The same binary gives the same bits on another x86-64 CPU (issue "Trustworthy numbers"): the
-quick AN0 beam run twice, once as the machine is and once with glibc told that the CPU lacks AVX2,
-FMA and AVX-512 (GLIBC_TUNABLES=glibc.cpu.hwcaps=-AVX2,-FMA,-AVX512F: libm's sin, cos, atan2 and
-pow then take their baseline code paths, as on an older x86-64). The portable build (no
--march=native, no contraction) uses no instruction beyond the x86-64 baseline itself, so its
-history.csv must be byte-identical. A native build is skipped (77): it is not meant to be
+quick AN0 beam run three times: as the machine is (its widest SIMD level, AVX-512 here); as on an
+older x86-64, with glibc told that the CPU lacks AVX2, FMA and AVX-512
+(GLIBC_TUNABLES=glibc.cpu.hwcaps=-AVX2,-FMA,-AVX512F: libm's sin, cos, atan2 and pow take their
+baseline code paths) and rcdem's two lane kernels on their baseline (SSE2) versions
+(RCDEM_SIMD=baseline, core/simd_level.hpp); and with the kernels' AVX2 versions. The portable
+build (no -march=native, no contraction; lane kernels that never sum across lanes) must give
+byte-identical history.csv files. A native build is skipped (77): it is not meant to be
 portable.
 
 usage: check_same_bits.py RCDEM_BINARY SOURCE_DIR
@@ -30,18 +32,30 @@ scenario = "examples/three_point_bending/study/quick/AN0.toml"
 masked = "glibc.cpu.hwcaps=-AVX2,-FMA,-AVX512F"
 with tempfile.TemporaryDirectory() as tmp:
     runs = {}
-    for name, tunables in (("as is", None), ("baseline libm", masked)):
+    for name, tunables, simd in (("as is", None, None), ("baseline libm", masked, "baseline"),
+                                 ("avx2 kernels", None, "avx2")):
         env = dict(os.environ)
         if tunables:
             env["GLIBC_TUNABLES"] = tunables
+        if simd:
+            env["RCDEM_SIMD"] = simd
         out = os.path.join(tmp, name.replace(" ", "_"))
         r = subprocess.run([rcdem, "-q", "run", scenario, "-o", out], cwd=source, env=env,
                            capture_output=True, text=True, timeout=1200)
         check(r.returncode == 0, f"quick AN0 ({name}) exits 0 ({r.stderr.strip()[-300:]})")
         runs[name] = out
-    a, b = (os.path.join(runs[n], "history.csv") for n in ("as is", "baseline libm"))
-    same = os.path.exists(a) and os.path.exists(b) and filecmp.cmp(a, b, shallow=False)
-    peaks = [json.load(open(os.path.join(runs[n], "summary.json")))["peak_load_N"]
-             if os.path.exists(os.path.join(runs[n], "summary.json")) else None for n in runs]
-    check(same, f"history.csv byte-identical with {masked} (peaks {peaks[0]!r} / {peaks[1]!r} N)")
+    def summary(name):
+        path = os.path.join(runs[name], "summary.json")
+        return json.load(open(path)) if os.path.exists(path) else {}
+
+    levels = {n: summary(n).get("rcdem", {}).get("simd") for n in runs}
+    check(levels["baseline libm"] == "baseline" and levels["avx2 kernels"] in ("avx2", "baseline"),
+          f"summary.json names the SIMD level each ran at ({levels})")
+    a = os.path.join(runs["as is"], "history.csv")
+    for other in ("baseline libm", "avx2 kernels"):
+        b = os.path.join(runs[other], "history.csv")
+        same = os.path.exists(a) and os.path.exists(b) and filecmp.cmp(a, b, shallow=False)
+        check(same, f"history.csv byte-identical: {other} ({levels[other]}) against as is "
+              f"({levels['as is']}); peaks {summary(other).get('peak_load_N')!r} / "
+              f"{summary('as is').get('peak_load_N')!r} N")
 checks.finish()

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "rcdem/contact/contact_kinematics.hpp"
+#include "rcdem/core/simd_level.hpp"
 
 namespace rcdem {
 
@@ -83,8 +84,11 @@ void ElasticCondensation::reset_flags(const ContactNetwork& net, const PointDama
   any_condensed = false;
 }
 
-void evaluate_condensed_block(const CondensedInputs& in, Index begin, Index count, ContactState& cs,
-                              CondensedBlock& out) {
+namespace {
+
+[[gnu::always_inline]] inline void condensed_block_lanes(const CondensedInputs& in, Index begin,
+                                                         Index count, ContactState& cs,
+                                                         CondensedBlock& out) {
   // Poses: 8 doubles per body (state/body_poses.hpp), x then the quaternion (w, x, y, z).
   const Real* pose = in.pose;
   const auto at = [begin](const std::vector<Real>& v) { return v.data() + begin; };
@@ -180,6 +184,40 @@ void evaluate_condensed_block(const CondensedInputs& in, Index begin, Index coun
       torque_a[3 * l + i] = -mom[i];
     }
   }
+}
+
+void condensed_block_lanes_baseline(const CondensedInputs& in, Index begin, Index count,
+                                    ContactState& cs, CondensedBlock& out) {
+  condensed_block_lanes(in, begin, count, cs, out);
+}
+#if RCDEM_SIMD_MULTIVERSION
+RCDEM_SIMD_TARGET_AVX2 void condensed_block_lanes_avx2(const CondensedInputs& in, Index begin,
+                                                       Index count, ContactState& cs,
+                                                       CondensedBlock& out) {
+  condensed_block_lanes(in, begin, count, cs, out);
+}
+RCDEM_SIMD_TARGET_AVX512 void condensed_block_lanes_avx512(const CondensedInputs& in, Index begin,
+                                                           Index count, ContactState& cs,
+                                                           CondensedBlock& out) {
+  condensed_block_lanes(in, begin, count, cs, out);
+}
+#endif
+
+}  // namespace
+
+void evaluate_condensed_block(const CondensedInputs& in, Index begin, Index count, ContactState& cs,
+                              CondensedBlock& out) {
+#if RCDEM_SIMD_MULTIVERSION
+  switch (simd_level()) {
+    case SimdLevel::Avx512:
+      return condensed_block_lanes_avx512(in, begin, count, cs, out);
+    case SimdLevel::Avx2:
+      return condensed_block_lanes_avx2(in, begin, count, cs, out);
+    case SimdLevel::Baseline:
+      break;
+  }
+#endif
+  condensed_block_lanes_baseline(in, begin, count, cs, out);
 }
 
 Real condensed_strain_energy(const CondensedSums& s, Index c, const Vec3& xa, const Vec3& xb,

@@ -24,6 +24,7 @@
 #include "rcdem/core/build_info.hpp"
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
+#include "rcdem/core/simd_level.hpp"
 #include "rcdem/io/atomic_file.hpp"
 #include "rcdem/io/checkpoint.hpp"
 #include "rcdem/io/crack_record.hpp"
@@ -580,8 +581,10 @@ RunSummary run_scenario(const Scenario& sc, const fs::path& out, const RunOption
     j["loop_seconds"] = loop_s;
     j["steps_per_second"] = loop_s > 0.0 ? static_cast<double>(r.steps) / loop_s : 0.0;
     j["seconds"] = wall;
-    j["rcdem"] = {
-        {"version", build_version()}, {"git_hash", build_git_hash()}, {"build", build_flavour()}};
+    j["rcdem"] = {{"version", build_version()},
+                  {"git_hash", build_git_hash()},
+                  {"build", build_flavour()},
+                  {"simd", simd_level_name(simd_level())}};
     io::write_file_atomically(out / "summary.json", j.dump(2) + "\n");
     io::run_plot_tool("plot_history.py", out);  // load_displacement.png
     r.history_columns = history.columns();

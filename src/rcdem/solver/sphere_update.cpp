@@ -2,12 +2,15 @@
 
 #include <cmath>
 
+#include "rcdem/core/simd_level.hpp"
 #include "rcdem/core/small_angle.hpp"
 
 namespace rcdem {
 
-void advance_spheres(Bodies& b, Index begin, Index end, Real dt, Real damping,
-                     const SphereStepOutputs& out) {
+namespace {
+
+[[gnu::always_inline]] inline void sphere_update_lanes(Bodies& b, Index begin, Index end, Real dt,
+                                                       Real damping, const SphereStepOutputs& out) {
   // Raw components: Vec3 is 3 doubles, Eigen's quaternion 4 (x, y, z, w).
   // From the block's first body: the lanes index from 0.
   Real* x = b.position[begin].data();
@@ -79,6 +82,39 @@ void advance_spheres(Bodies& b, Index begin, Index end, Real dt, Real damping,
     jumped_out[i] =
         !(dx_sq < dx_limit * dx_limit) | !(w_sq * dt * dt < kStableTurnLimit * kStableTurnLimit);
   }
+}
+
+void sphere_update_lanes_baseline(Bodies& b, Index begin, Index end, Real dt, Real damping,
+                                  const SphereStepOutputs& out) {
+  sphere_update_lanes(b, begin, end, dt, damping, out);
+}
+#if RCDEM_SIMD_MULTIVERSION
+RCDEM_SIMD_TARGET_AVX2 void sphere_update_lanes_avx2(Bodies& b, Index begin, Index end, Real dt,
+                                                     Real damping, const SphereStepOutputs& out) {
+  sphere_update_lanes(b, begin, end, dt, damping, out);
+}
+RCDEM_SIMD_TARGET_AVX512 void sphere_update_lanes_avx512(Bodies& b, Index begin, Index end, Real dt,
+                                                         Real damping,
+                                                         const SphereStepOutputs& out) {
+  sphere_update_lanes(b, begin, end, dt, damping, out);
+}
+#endif
+
+}  // namespace
+
+void advance_spheres(Bodies& b, Index begin, Index end, Real dt, Real damping,
+                     const SphereStepOutputs& out) {
+#if RCDEM_SIMD_MULTIVERSION
+  switch (simd_level()) {
+    case SimdLevel::Avx512:
+      return sphere_update_lanes_avx512(b, begin, end, dt, damping, out);
+    case SimdLevel::Avx2:
+      return sphere_update_lanes_avx2(b, begin, end, dt, damping, out);
+    case SimdLevel::Baseline:
+      break;
+  }
+#endif
+  sphere_update_lanes_baseline(b, begin, end, dt, damping, out);
 }
 
 }  // namespace rcdem
