@@ -121,7 +121,7 @@ def replaced_results(tmp: Path, small: Path, refused: Path, failing: Path) -> No
     check(snapshot(d) == before, "... and the earlier results are back, byte for byte")
 
     r = run(["run", str(failing), "-o", str(d), "--force"])
-    check(r.returncode == 1 and "numerical instability" in r.stderr,
+    check(r.returncode == 1 and f"{failing}: numerical instability" in r.stderr,
           f"a run failing after its start fails: {r.stderr.strip()[:120]!r}")
     manifest = json.loads((d / "manifest.json").read_text())
     check(manifest["exit_state"] == "failed" and not (d / "summary.json").exists()

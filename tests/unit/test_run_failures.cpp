@@ -40,6 +40,8 @@ TEST(RunFailures, NonFiniteStateStopsTheRunAndKeepsTheHistory) {
   } catch (const Error& e) {
     message = e.what();
   }
+  EXPECT_EQ(message.find("small_run.toml: non-finite state at step 1 "), message.find("small_run"))
+      << message;
   EXPECT_NE(message.find("non-finite state at step 1 "), std::string::npos) << message;
   EXPECT_NE(message.find("nan J; no body"), std::string::npos) << message;
   EXPECT_NE(message.find("history.csv is kept, up to step 0)"), std::string::npos) << message;

@@ -415,7 +415,8 @@ RunSummary run_scenario(const Scenario& sc, const fs::path& out, const RunOption
           history.write(out / "history.csv");
         } catch (const Error&) {
         }
-        throw Error(fmt::format("{} (history.csv is kept, up to step {})", e.what(),
+        throw Error(fmt::format("{}{} (history.csv is kept, up to step {})",
+                                sc.source.empty() ? "" : sc.source.string() + ": ", e.what(),
                                 history.rows() ? history.data().back()[0] : 0.0));
       }
       if (on_step) on_step(sim);
