@@ -41,7 +41,11 @@ int generate(const fs::path& scenario_path, fs::path out, bool force) {
   const rcdem::Scenario scenario = rcdem::load_scenario(scenario_path);
   if (out.empty()) out = default_output(scenario_path);
   rcdem::io::OutputDirectory dir(out, force);
-  write_specimen(scenario, out, start);
+  try {
+    write_specimen(scenario, out, start);
+  } catch (const rcdem::Error& e) {
+    rcdem::rethrow_naming(scenario_path.string(), e);
+  }
   dir.commit();
   return 0;
 }

@@ -18,4 +18,13 @@ template <typename... Args>
   throw Error(fmt::format(format, std::forward<Args>(args)...));
 }
 
+// Rethrows `e` with "file: " in front, unless its message names the file already: a failure deep
+// in the model's set-up (a plate that touches nothing, a cell the tessellation cannot form) still
+// says which scenario caused it.
+[[noreturn]] inline void rethrow_naming(const std::string& file, const Error& e) {
+  const std::string message = e.what();
+  if (file.empty() || message.find(file) != std::string::npos) throw e;
+  throw Error(file + ": " + message);
+}
+
 }  // namespace rcdem

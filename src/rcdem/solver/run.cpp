@@ -15,6 +15,7 @@
 #include <ctime>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #if defined(_OPENMP)
@@ -274,7 +275,13 @@ RunSummary run_scenario(const Scenario& sc, const fs::path& out, const RunOption
   }
 
   try {
-    Simulation sim(sc, build_specimen(sc));
+    std::optional<Simulation> built;
+    try {
+      built.emplace(sc, build_specimen(sc));
+    } catch (const Error& e) {
+      rethrow_naming(sc.source.string(), e);
+    }
+    Simulation& sim = *built;
     // Written only once the set-up has passed every check, so a refused run leaves nothing.
     if (!opt.resume) {
       io::write_file_atomically(out / "scenario.toml", sc.text);
