@@ -22,7 +22,8 @@ For the runs to stay short, every base first gets relaxation_iterations <= 20 an
   ok-refused      exit 1 with exactly one line 'rcdem: error: ...' naming the scenario or the
                   included file;
   ok-interrupted  still running after --timeout s, then ended by SIGTERM as rcdem documents it
-                  (exit 143, a checkpoint or nothing yet): a long run, not a hang;
+                  (exit 143, a checkpoint or nothing yet): a long run, not a hang (a run whose
+                  loop had just ended finishes instead: exit 0, judged as such);
   CRASH           a signal, or exit 3 (internal error) other than memory;
   MEMORY          the address-space cap (--memory-gib) reached (std::bad_alloc);
   HANG            no exit within --timeout s plus 30 s after SIGTERM;
@@ -128,8 +129,11 @@ def classify(rc, stderr: str, out: Path, names: list[str], timed_out: bool) -> t
     if timed_out:
         if rc is None:
             return "HANG", "no exit after SIGTERM"
-        return ("ok-interrupted", "") if rc in (143, -signal.SIGTERM) else (
-            "BAD-MESSAGE", f"after SIGTERM: exit {rc}: {stderr[-200:]!r}")
+        if rc in (143, -signal.SIGTERM):
+            return "ok-interrupted", ""
+        if rc != 0:
+            return "BAD-MESSAGE", f"after SIGTERM: exit {rc}: {stderr[-200:]!r}"
+        # The run's loop had ended as the signal came, so it finished and wrote its results.
     if rc < 0:
         return "CRASH", f"signal {-rc}: {stderr[-300:]!r}"
     if "bad_alloc" in stderr:
