@@ -214,16 +214,14 @@ int calibrate(const fs::path& scenario_path, fs::path out, bool force, double si
   if (out.empty()) out = fs::path("results") / ("calibrate_" + scenario_path.stem().string());
   rcdem::io::OutputDirectory dir(out, force);
   dir.commit();  // a calibration's partial outputs (its iterations) are kept if it fails
-  {
-    const auto r = rcdem::calibrate(base, opt, out);
-    fmt::print(
-        "E = {:.4g} GPa, nu = {:.4f}, sigma_c = {:.4g} MPa, sigma_t = {:.4g} MPa "
-        "(sigma_c / sigma_t = {:.1f}){}\nwritten to {}\n",
-        r.measured.E / 1e9, r.measured.nu, r.measured.sigma_c / 1e6, r.measured.sigma_t / 1e6,
-        r.measured.sigma_c / r.measured.sigma_t,
-        opt.target ? (r.converged ? "; converged" : "; NOT converged") : "", out.string());
-    return opt.target && !r.converged ? 4 : 0;
-  }
+  const auto r = rcdem::calibrate(base, opt, out);
+  fmt::print(
+      "E = {:.4g} GPa, nu = {:.4f}, sigma_c = {:.4g} MPa, sigma_t = {:.4g} MPa "
+      "(sigma_c / sigma_t = {:.1f}){}\nwritten to {}\n",
+      r.measured.E / 1e9, r.measured.nu, r.measured.sigma_c / 1e6, r.measured.sigma_t / 1e6,
+      r.measured.sigma_c / r.measured.sigma_t,
+      opt.target ? (r.converged ? "; converged" : "; NOT converged") : "", out.string());
+  return opt.target && !r.converged ? 4 : 0;
 }
 
 // A study directory is resumed (finished cases kept) when it holds a study.json; any other

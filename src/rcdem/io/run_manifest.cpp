@@ -12,7 +12,6 @@
 #include <ctime>
 #include <fstream>
 #include <sstream>
-#include <utility>
 
 #if defined(_OPENMP)
 #include <omp.h>
@@ -50,9 +49,6 @@ RunLock::RunLock(const fs::path& dir, bool on) : path_(dir / "run.lock") {
   }
   fail("cannot lock the run directory '{}': run.lock keeps changing", dir.string());
 }
-
-RunLock::RunLock(RunLock&& other) noexcept
-    : path_(std::move(other.path_)), fd_(std::exchange(other.fd_, -1)) {}
 
 RunLock::~RunLock() {
   if (fd_ < 0) return;

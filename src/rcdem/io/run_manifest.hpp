@@ -14,11 +14,9 @@ namespace rcdem::io {
 class RunLock {
  public:
   RunLock(const std::filesystem::path& dir, bool on);
-  RunLock(RunLock&& other) noexcept;
   ~RunLock();
   RunLock(const RunLock&) = delete;
   RunLock& operator=(const RunLock&) = delete;
-  RunLock& operator=(RunLock&&) = delete;
 
  private:
   std::filesystem::path path_;

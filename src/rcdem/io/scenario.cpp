@@ -54,11 +54,17 @@ struct Reader {
     return s.str();
   }
 
+  // Subnormal numbers (below 2.2e-308) are no physical value: out of every range.
   bool in_range(double v, const io::Range& r) const {
-    if (!std::isfinite(v)) return false;
+    if (!std::isfinite(v) || std::fpclassify(v) == FP_SUBNORMAL) return false;
     if (r.min_exclusive ? !(v > r.min) : !(v >= r.min)) return false;
     if (r.max_exclusive ? !(v < r.max) : !(v <= r.max)) return false;
     return true;
+  }
+
+  static std::string describe_number(double v) {
+    return std::fpclassify(v) == FP_SUBNORMAL ? fmt::format("{} (a subnormal number)", v)
+                                              : fmt::format("{}", v);
   }
 
   std::optional<double> number(const toml::node& node) const {
@@ -73,9 +79,7 @@ struct Reader {
       case KeyType::Real: {
         const auto v = number(node);
         if (!v) bad_value(node, decl, describe_node(node), path);
-        if (!in_range(*v, decl.range)) bad_value(node, decl, fmt::format("{}", *v), path);
-        if (std::fpclassify(*v) == FP_SUBNORMAL)  // below 2.2e-308: no physical value is
-          bad_value(node, decl, fmt::format("{} (a subnormal number)", *v), path);
+        if (!in_range(*v, decl.range)) bad_value(node, decl, describe_number(*v), path);
         value = *v;
         break;
       }
@@ -112,8 +116,8 @@ struct Reader {
         for (const auto& element : *array) {
           const auto x = number(element);
           if (!x) bad_value(node, decl, describe_node(element) + " in the array", path);
-          if (!in_range(*x, decl.range) || std::fpclassify(*x) == FP_SUBNORMAL)
-            bad_value(node, decl, fmt::format("{} in the array", *x), path);
+          if (!in_range(*x, decl.range))
+            bad_value(node, decl, describe_number(*x) + " in the array", path);
           v.push_back(*x);
         }
         value = std::move(v);
@@ -323,7 +327,7 @@ Scenario convert(Reader& r, const std::string& text) {
           "v_min < v_max",
           r.at(inst + ".extent"), inst);
     if (!p.extent.empty()) {
-      const int u = p.axis == 0 ? 1 : 0, v = p.axis == 2 ? 1 : 2;
+      const auto [u, v] = face_axes(p.axis);
       if (p.extent[1] <= 0.0 || p.extent[0] >= s.specimen.size[u] || p.extent[3] <= 0.0 ||
           p.extent[2] >= s.specimen.size[v])
         fail(
@@ -431,10 +435,6 @@ Scenario convert(Reader& r, const std::string& text) {
   validate_specimen(s);
   return s;
 }
-
-}  // namespace
-
-namespace {
 
 toml::table parse_toml(const std::string& text, const std::string& source_name) {
   io::check_scenario_nesting(text, source_name);

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rcdem/core/types.hpp"
@@ -84,6 +85,9 @@ struct LoadingRateSettings {
   Real doubling_time = 2e-3;  // s
 };
 
+// The two axes spanning a plate on a face normal to `axis`, in x, y, z order.
+inline std::pair<int, int> face_axes(int axis) { return {axis == 0 ? 1 : 0, axis == 2 ? 1 : 2}; }
+
 struct PlateSettings {
   std::string name;
   int axis = 2;              // 0, 1, 2 for x, y, z
@@ -93,6 +97,12 @@ struct PlateSettings {
   Real ramp_time = 0.0;
   bool glued = false;
   Real friction = 0.0;
+  // [u_min, u_max, v_min, v_max] in face_axes(axis): the extent, or the whole face of a specimen
+  // of `size` (its origin at a corner).
+  std::vector<Real> rectangle(const Vec3& size) const {
+    const auto [u, v] = face_axes(axis);
+    return extent.empty() ? std::vector<Real>{0.0, size[u], 0.0, size[v]} : extent;
+  }
 };
 
 enum class InterfaceLaw { EL, NL_A, NL_B };

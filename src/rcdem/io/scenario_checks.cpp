@@ -17,14 +17,15 @@ std::string key_location(const Scenario& s, const std::string& key) {
                                 : fmt::format("{}:{}", s.source.string(), it->second);
 }
 
+namespace {
+
+// The concrete particles a specimen will hold, estimated from its solid volume and mean size.
 double estimated_concrete_particles(const Scenario& s) {
   const auto& g = s.generation;
   const Real solid = (1.0 - g.porosity) * specimen_geometry(s).volume();
   const Real mean_diameter = 0.5 * (std::min(g.aggregate_d_min, g.mortar_d_min) + g.mortar_d_max);
   return solid / (kPi / 6.0 * std::pow(mean_diameter, 3));
 }
-
-namespace {
 
 double physical_memory_bytes() {
   const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
@@ -150,17 +151,11 @@ void check_plate_layout(const Scenario& s) {
   if (static_cast<int>(s.plates.size()) > kMaxPlates)
     fail("{}: {} plates: expected at most {}", key_location(s, "plates." + s.plates.back().name),
          s.plates.size(), kMaxPlates);
-  // A plate's rectangle in its face's two other axes, [] standing for the whole face.
-  const auto rect = [&](const PlateSettings& p) {
-    const int u = p.axis == 0 ? 1 : 0, v = p.axis == 2 ? 1 : 2;
-    return p.extent.empty() ? std::vector<Real>{0.0, s.specimen.size[u], 0.0, s.specimen.size[v]}
-                            : p.extent;
-  };
   for (std::size_t i = 0; i < s.plates.size(); ++i)
     for (std::size_t j = i + 1; j < s.plates.size(); ++j) {
       const auto &a = s.plates[i], &b = s.plates[j];
       if (a.axis != b.axis || a.side != b.side) continue;
-      const auto ra = rect(a), rb = rect(b);
+      const auto ra = a.rectangle(s.specimen.size), rb = b.rectangle(s.specimen.size);
       const bool overlap = std::min(ra[1], rb[1]) > std::max(ra[0], rb[0]) &&
                            std::min(ra[3], rb[3]) > std::max(ra[2], rb[2]);
       if (overlap)

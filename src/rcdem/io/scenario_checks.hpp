@@ -21,9 +21,6 @@ inline constexpr int kMaxBars = 4096;
 // "file:line" where `key` was set, or the file alone for a default.
 std::string key_location(const Scenario& s, const std::string& key);
 
-// The concrete particles a specimen will hold, estimated from its solid volume and mean size.
-double estimated_concrete_particles(const Scenario& s);
-
 // Bodies (particles, interface spheres, cylinders) against generation.max_particles, and their
 // memory against this machine's physical memory.
 void check_model_size(const Scenario& s);

@@ -8,13 +8,6 @@
 
 namespace rcdem {
 
-namespace {
-
-// The two axes spanning a plate, in x, y, z order.
-std::pair<int, int> plane_axes(int axis) { return {axis == 0 ? 1 : 0, axis == 2 ? 1 : 2}; }
-
-}  // namespace
-
 Real Plate::velocity_at(Real t) const {
   if (ramp_time <= 0.0 || t >= ramp_time) return velocity;
   // A smooth (cosine) ramp: no jump in acceleration, so no shock wave at the start.
@@ -37,7 +30,7 @@ std::vector<Plate> make_plates(const std::vector<PlateSettings>& settings,
     p.normal = Vec3::Zero();
     p.normal[s.axis] = -s.side;
     p.face_coordinate = s.side < 0 ? g.lo[s.axis] : g.hi[s.axis];
-    const auto [u, v] = plane_axes(s.axis);
+    const auto [u, v] = face_axes(s.axis);
     if (s.extent.empty()) {
       p.u_min = g.lo[u];
       p.u_max = g.hi[u];
@@ -64,7 +57,7 @@ PlateContacts make_plate_contacts(const std::vector<Plate>& plates, const Bounda
   for (std::size_t p = 0; p < plates.size(); ++p) {
     const Plate& plate = plates[p];
     const int face = 2 * plate.axis + (plate.side > 0 ? 1 : 0);
-    const auto [u, v] = plane_axes(plate.axis);
+    const auto [u, v] = face_axes(plate.axis);
     Index touching = 0;
     for (Index k = 0; k < faces.size(); ++k) {
       if (faces.face[k] != face) continue;
@@ -115,7 +108,7 @@ void evaluate_plate_contact(const std::vector<Plate>& plates, PlateContacts& pc,
   const Vec3 u = pp - plate_point;
   const Real un = u.dot(n);  // opening positive: the particle moving off the plate
   const Vec3 us = u - un * n;
-  const auto [ua, va] = plane_axes(plate.axis);
+  const auto [ua, va] = face_axes(plate.axis);
   const bool on_plate = pp[ua] >= plate.u_min && pp[ua] <= plate.u_max && pp[va] >= plate.v_min &&
                         pp[va] <= plate.v_max;
   LocalPointState& s = pc.state[k];

@@ -51,8 +51,6 @@ using io::thread_count;
 
 namespace {
 
-std::string at(const Scenario& s, const std::string& key) { return io::key_location(s, key); }
-
 const PlateSettings* find(const Scenario& s, const std::string& name) {
   for (const auto& p : s.plates)
     if (p.name == name) return &p;
@@ -99,9 +97,10 @@ void validate_run(const Scenario& s) {
     fail(
         "{}: stop.displacement, stop.load_drop and stop.post_peak_displacement need "
         "loading.control_plate (or loading.control_bar), the plate (or pulled bar) they refer to",
-        at(s, s.stop.displacement > 0.0
-                  ? "stop.displacement"
-                  : (s.stop.load_drop > 0.0 ? "stop.load_drop" : "stop.post_peak_displacement")));
+        io::key_location(
+            s, s.stop.displacement > 0.0
+                   ? "stop.displacement"
+                   : (s.stop.load_drop > 0.0 ? "stop.load_drop" : "stop.post_peak_displacement")));
   // An unglued plate only pushes: moving off its face it never touches the specimen again, and
   // the run would "succeed" with no load (issue 28).
   for (const auto& p : s.plates)
@@ -110,7 +109,7 @@ void validate_run(const Scenario& s) {
           "{}: plate '{}' moves away from the specimen (velocity {} m/s on the face {}{}, whose "
           "inward normal points to {}{}): an unglued plate only pushes; expected a velocity of the "
           "other sign, or glued = true to pull",
-          at(s, "plates." + p.name + ".velocity"), p.name, p.velocity,
+          io::key_location(s, "plates." + p.name + ".velocity"), p.name, p.velocity,
           static_cast<char>('x' + p.axis), p.side < 0 ? '-' : '+', p.side < 0 ? '+' : '-',
           static_cast<char>('x' + p.axis));
   bool moving = false;
@@ -127,7 +126,7 @@ void validate_run(const Scenario& s) {
     fail(
         "{}: stop.displacement can never trigger: the control plate '{}' does not move "
         "(velocity 0)",
-        at(s, "stop.displacement"), control->name);
+        io::key_location(s, "stop.displacement"), control->name);
 }
 
 Scenario run_directory_scenario(const fs::path& dir) {
@@ -422,9 +421,9 @@ RunSummary run_scenario(const Scenario& sc, const fs::path& out, const RunOption
           history.write(out / "history.csv");
         } catch (const Error&) {
         }
-        throw Error(fmt::format("{}{} (history.csv is kept, up to step {})",
-                                sc.source.empty() ? "" : sc.source.string() + ": ", e.what(),
-                                history.rows() ? history.data().back()[0] : 0.0));
+        rethrow_naming(sc.source.string(),
+                       Error(fmt::format("{} (history.csv is kept, up to step {})", e.what(),
+                                         history.rows() ? history.data().back()[0] : 0.0)));
       }
       if (on_step) on_step(sim);
       if (load > peak) {

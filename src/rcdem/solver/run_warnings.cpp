@@ -10,14 +10,12 @@ namespace rcdem {
 void set_expectation(const Scenario& sc, RunOutcome& o) {
   for (const auto& p : sc.plates) {
     if (p.name != sc.control_plate) continue;
-    const int u = p.axis == 0 ? 1 : 0, v = p.axis == 2 ? 1 : 2;
     const Vec3& size = sc.specimen.size;
-    const auto side = [&](int axis, std::size_t lo) {
-      return p.extent.empty()
-                 ? size[axis]
-                 : std::min(p.extent[lo + 1], size[axis]) - std::max(p.extent[lo], 0.0);
-    };
-    o.expected_load = sc.contact.sigma_nt * side(u, 0) * side(v, 2);
+    const auto [u, v] = face_axes(p.axis);
+    const std::vector<Real> r = p.rectangle(size);  // its part on the face:
+    const Real width_u = std::min(r[1], size[u]) - std::max(r[0], 0.0);
+    const Real width_v = std::min(r[3], size[v]) - std::max(r[2], 0.0);
+    o.expected_load = sc.contact.sigma_nt * width_u * width_v;
     o.loaded_travel = 10.0 * sc.contact.sigma_nt / sc.contact.E_bar * size[p.axis];
   }
   for (const auto& b : sc.bars) {

@@ -43,10 +43,6 @@ struct PulledBar {
 
 class Simulation {
  public:
-  // Below this a time step is refused at set-up (issue 28): no concrete or steel of any size a
-  // scenario can describe comes near it (the study's beams: 8e-7 s).
-  static constexpr Real kMinimumTimeStep = rcdem::kMinimumTimeStep;
-
   // Takes the specimen; the time step is the stable estimate times solver.dt_safety, or the
   // scenario's fixed step (refused above half the critical estimate: dt_safety's upper bound).
   Simulation(const Scenario& scenario, Specimen specimen);

@@ -233,9 +233,9 @@ int run_study(const StudyOptions& o) {
     const fs::path dir = o.out / "cases" / records[i].name;
     std::error_code e;
     if (fs::exists(dir)) {
-      const io::RunLock idle(dir, true);  // refused while a run started by hand is live in it
+      { const io::RunLock idle(dir, true); }  // refused while a run started by hand is live in it
+      fs::remove_all(dir, e);
     }
-    if (fs::exists(dir)) fs::remove_all(dir, e);
     if (e) fail("{}: cannot clear the interrupted case: {}", dir.string(), e.message());
     fs::create_directories(dir);
     return dir;
