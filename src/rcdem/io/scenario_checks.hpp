@@ -11,7 +11,8 @@
 namespace rcdem::io {
 
 // A run's peak memory per body (particle or interface sphere), measured: the full AN4 NL-B beam
-// (26,478 particles, 171,668 contacts) peaks at 452 MB resident after 20 steps, 17 kB each.
+// (26,478 particles, 171,668 contacts) peaks at 449 MB resident after 20 steps, 17 kB each
+// (bench/RESULTS.md, "Reliability").
 inline constexpr double kBytesPerParticle = 17.0e3;
 // More plates or bars than any test needs is a typo or a generated file gone wrong; the bar
 // checks are pairwise.
