@@ -194,7 +194,7 @@ void apply_override(rcdem::Scenario& s, const std::string& item) {
 
 int calibrate(const fs::path& scenario_path, fs::path out, bool force, double size,
               double rate_factor, const std::vector<std::string>& sets, const std::string& target,
-              double tolerance, int iterations, bool peak_only) {
+              double tolerance, int iterations, bool peak_only, const std::string& lever) {
   rcdem::Scenario base = rcdem::load_scenario(scenario_path);
   for (const auto& item : sets) apply_override(base, item);
   rcdem::CalibrationOptions opt;
@@ -206,6 +206,7 @@ int calibrate(const fs::path& scenario_path, fs::path out, bool force, double si
   }
   opt.tolerance = tolerance;
   opt.max_iterations = iterations;
+  opt.tension_lever = rcdem::parse_tension_lever(lever);
   if (!target.empty()) opt.target = rcdem::parse_macro_properties(target);
   const auto largest = std::max(base.generation.aggregate_d_max, base.generation.mortar_d_max);
   if (size < 4.0 * largest)
@@ -315,6 +316,10 @@ int main(int argc, char** argv) {
       "Stop each test soon after its peak (E, nu and strengths only; no post-peak curve)");
   cal->add_option("--iterations", iterations, "At most this many search iterations")
       ->check(CLI::Range(1, 50));
+  std::string tension_lever = "G_fn";
+  cal->add_option("--tension-lever", tension_lever,
+                  "Contact parameter the search moves, with tau, towards sigma_t: G_fn (default) "
+                  "or sigma_nt");
 
   std::string study_name;
   fs::path study_scenarios;
@@ -352,7 +357,7 @@ int main(int argc, char** argv) {
                  std::vector<std::string>(argv, argv + argc));
     if (*cal)
       return calibrate(scenario, out, force, size, rate_factor, sets, target, tolerance, iterations,
-                       peak_only);
+                       peak_only, tension_lever);
     if (*stc) return study(study_name, study_scenarios, out, force, quick, cases, jobs);
     if (*schema) {
       rcdem::io::scenario_schema().print_template(std::cout);

@@ -130,6 +130,12 @@ nlohmann::ordered_json pair_json(const Pair& p) {
 
 }  // namespace
 
+TensionLever parse_tension_lever(const std::string& text) {
+  if (text == "G_fn") return TensionLever::FractureEnergy;
+  if (text == "sigma_nt") return TensionLever::TensileStrength;
+  fail("--tension-lever '{}': expected G_fn (the default) or sigma_nt", text);
+}
+
 ContactParameters update_parameters(const ContactParameters& p, const MacroProperties& m,
                                     const MacroProperties& t) {
   ContactParameters q = p;
@@ -171,7 +177,10 @@ CalibrationResult calibrate(const Scenario& base_in, const CalibrationOptions& o
     // proportional update can then walk away from the best point it passed.
     Real best_misfit = std::numeric_limits<Real>::infinity();
     int best_iteration = 0;
-    StrengthSecant strengths;
+    const bool by_energy = opt.tension_lever == TensionLever::FractureEnergy;
+    StrengthSecant strengths(by_energy ? StrengthSecant::fracture_energy_prior()
+                                       : StrengthSecant::measured_prior());
+    j["tension_lever"] = by_energy ? "G_fn" : "sigma_nt";
     for (int it = 0; it < opt.max_iterations; ++it) {
       pair = run_pair(base, search, out / fmt::format("iteration_{:02d}", it));
       const MacroProperties m = pair.macro();
@@ -197,10 +206,12 @@ CalibrationResult calibrate(const Scenario& base_in, const CalibrationOptions& o
       }
       const ContactParameters before = base.contact;
       base.contact = update_parameters(before, m, t);
-      const Eigen::Vector2d next = strengths.step({before.tau, before.sigma_nt},
-                                                  {m.sigma_c, m.sigma_t}, {t.sigma_c, t.sigma_t});
+      base.contact.sigma_nt = before.sigma_nt;
+      Real& lever = by_energy ? base.contact.G_fn : base.contact.sigma_nt;
+      const Eigen::Vector2d next =
+          strengths.step({before.tau, lever}, {m.sigma_c, m.sigma_t}, {t.sigma_c, t.sigma_t});
       base.contact.tau = next[0];
-      base.contact.sigma_nt = next[1];
+      lever = next[1];
       const Eigen::Matrix2d& jac = strengths.jacobian();
       nlohmann::ordered_json rows = nlohmann::ordered_json::array();
       for (int r = 0; r < 2; ++r)

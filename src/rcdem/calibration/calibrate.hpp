@@ -18,9 +18,16 @@ struct MacroProperties {
 // Parses "E=34.2e9,nu=0.15,sigma_c=91.2e6,sigma_t=4.0e6" (SI); all four are required.
 MacroProperties parse_macro_properties(const std::string& text);
 
+// The contact parameter that the search moves, with tau, towards sigma_t (docs/model.md 7).
+enum class TensionLever { FractureEnergy, TensileStrength };
+
+// "G_fn" or "sigma_nt"; anything else is refused naming the option.
+TensionLever parse_tension_lever(const std::string& text);
+
 struct CalibrationOptions {
   UniaxialOptions uniaxial;
   std::optional<MacroProperties> target;
+  TensionLever tension_lever = TensionLever::FractureEnergy;
   Real tolerance = 0.05;
   int max_iterations = 8;
 };
@@ -36,7 +43,7 @@ struct CalibrationResult {
 // closed-form relations of a random isotropic network of normal and shear springs,
 // nu = (1 - alpha) / (4 + alpha) and E ~ E_bar (2 + 3 alpha) / (4 + alpha), each corrected by the
 // ratio measured on this packing; the strengths in proportion to their misfit (the search then
-// replaces tau and sigma_nt by StrengthSecant's step, calibration/strength_secant.hpp).
+// replaces tau and its tension lever by StrengthSecant's step, calibration/strength_secant.hpp).
 ContactParameters update_parameters(const ContactParameters& p, const MacroProperties& measured,
                                     const MacroProperties& target);
 

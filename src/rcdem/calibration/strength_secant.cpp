@@ -5,10 +5,10 @@
 
 namespace rcdem {
 
-Eigen::Vector2d StrengthSecant::step(const Eigen::Vector2d& tau_sigma_nt,
+Eigen::Vector2d StrengthSecant::step(const Eigen::Vector2d& tau_lever,
                                      const Eigen::Vector2d& measured,
                                      const Eigen::Vector2d& target) {
-  const Eigen::Vector2d x = tau_sigma_nt.array().log();
+  const Eigen::Vector2d x = tau_lever.array().log();
   const Eigen::Vector2d y = measured.array().log();
   if (has_previous_) {
     const Eigen::Vector2d dx = x - x_previous_, dy = y - y_previous_;
