@@ -12,8 +12,8 @@
 
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
-#include "rcdem/io/checkpoint.hpp"
-#include "rcdem/io/scenario.hpp"
+#include "rcdem/run/checkpoint.hpp"
+#include "rcdem/config/scenario.hpp"
 #include "rcdem/solver/simulation.hpp"
 #include "rcdem/specimens/specimen.hpp"
 

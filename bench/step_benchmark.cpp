@@ -3,7 +3,7 @@
 //
 // Usage: rcdem_step_bench SCENARIO.toml STEPS [WARMUP=50] [REPEATS=1] [--checkpoint FILE]
 //   Generates the specimen (not timed); with --checkpoint, restores the state a run of that
-//   scenario saved (io/checkpoint: a beam cracked half way through, say; the specimen must be the
+//   scenario saved (run/checkpoint: a beam cracked half way through, say; the specimen must be the
 //   same, the scenario's hash is not checked, so a copy of the scenario with other solver or
 //   output keys serves); runs WARMUP steps (not timed), then times STEPS calls of
 //   step() with steady_clock, REPEATS times back to back, and reports the fastest repetition (on a
@@ -33,8 +33,8 @@
 
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
-#include "rcdem/io/checkpoint.hpp"
-#include "rcdem/io/scenario.hpp"
+#include "rcdem/run/checkpoint.hpp"
+#include "rcdem/config/scenario.hpp"
 #include "rcdem/solver/simulation.hpp"
 #include "rcdem/specimens/specimen.hpp"
 

@@ -19,11 +19,11 @@
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
 #include "rcdem/io/atomic_file.hpp"
-#include "rcdem/io/run_directory.hpp"
-#include "rcdem/io/scenario.hpp"
-#include "rcdem/io/schema.hpp"
+#include "rcdem/run/run_directory.hpp"
+#include "rcdem/config/scenario.hpp"
+#include "rcdem/config/schema.hpp"
 #include "rcdem/io/specimen_output.hpp"
-#include "rcdem/solver/run.hpp"
+#include "rcdem/run/run.hpp"
 #include "rcdem/specimens/specimen.hpp"
 #include "rcdem/study/study.hpp"
 
@@ -360,7 +360,7 @@ int main(int argc, char** argv) {
                        peak_only, tension_lever);
     if (*stc) return study(study_name, study_scenarios, out, force, quick, cases, jobs);
     if (*schema) {
-      rcdem::io::scenario_schema().print_template(std::cout);
+      rcdem::config::scenario_schema().print_template(std::cout);
       return 0;
     }
   } catch (const rcdem::Error& e) {

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "rcdem/io/scenario.hpp"
+#include "rcdem/config/scenario.hpp"
 
 namespace rcdem::test {
 

@@ -19,10 +19,10 @@
 #endif
 
 #include "rcdem/core/error.hpp"
-#include "rcdem/io/checkpoint.hpp"
-#include "rcdem/io/crack_record.hpp"
-#include "rcdem/io/run_output.hpp"
-#include "rcdem/io/scenario.hpp"
+#include "rcdem/run/checkpoint.hpp"
+#include "rcdem/run/crack_record.hpp"
+#include "rcdem/run/run_output.hpp"
+#include "rcdem/config/scenario.hpp"
 #include "rcdem/solver/simulation.hpp"
 #include "rcdem/specimens/specimen.hpp"
 

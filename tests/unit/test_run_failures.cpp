@@ -8,8 +8,8 @@
 
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
-#include "rcdem/io/scenario.hpp"
-#include "rcdem/solver/run.hpp"
+#include "rcdem/config/scenario.hpp"
+#include "rcdem/run/run.hpp"
 
 namespace rcdem {
 namespace {

@@ -4,8 +4,8 @@
 
 #include <filesystem>
 
-#include "rcdem/io/scenario.hpp"
-#include "rcdem/solver/run_warnings.hpp"
+#include "rcdem/config/scenario.hpp"
+#include "rcdem/run/run_warnings.hpp"
 
 namespace rcdem {
 namespace {

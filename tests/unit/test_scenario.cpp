@@ -3,8 +3,8 @@
 #include <sstream>
 
 #include "rcdem/core/error.hpp"
-#include "rcdem/io/scenario.hpp"
-#include "rcdem/io/schema.hpp"
+#include "rcdem/config/scenario.hpp"
+#include "rcdem/config/schema.hpp"
 #include "small_scenarios.hpp"
 
 using namespace rcdem;
@@ -67,7 +67,7 @@ TEST(Scenario, CrossKeyChecks) {
 TEST(Schema, TemplateParsesBackWithEveryDefault) {
   // print-schema's template, with the required keys filled in, is itself a valid scenario.
   std::ostringstream out;
-  io::scenario_schema().print_template(out);
+  config::scenario_schema().print_template(out);
   std::string text = out.str();
   const auto fill = [&](const std::string& from, const std::string& to) {
     const auto pos = text.find(from);

@@ -7,10 +7,10 @@
 #include <string>
 
 #include "rcdem/core/error.hpp"
-#include "rcdem/io/scenario.hpp"
-#include "rcdem/io/scenario_text.hpp"
+#include "rcdem/config/scenario.hpp"
+#include "rcdem/config/scenario_text.hpp"
 
-namespace rcdem::io {
+namespace rcdem::config {
 namespace {
 
 std::string dotted(int levels) {
@@ -107,7 +107,7 @@ TEST(ScenarioText, ReadsOnlyRegularFilesBelowTheCap) {
 }
 
 }  // namespace
-}  // namespace rcdem::io
+}  // namespace rcdem::config
 
 namespace rcdem {
 namespace {

@@ -12,7 +12,7 @@
 
 #include "rcdem/contact/local_point_properties.hpp"
 #include "rcdem/specimens/specimen.hpp"
-#include "rcdem/specimens/specimen_registry.hpp"
+#include "rcdem/config/specimen_registry.hpp"
 #include "rcdem/tessellation/cell_complex.hpp"
 #include "small_scenarios.hpp"
 

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "dynamics_checks.hpp"
-#include "rcdem/io/scenario.hpp"
+#include "rcdem/config/scenario.hpp"
 #include "rcdem/solver/assembled_stiffness.hpp"
 #include "rcdem/solver/critical_time_step.hpp"
 #include "rcdem/solver/simulation.hpp"

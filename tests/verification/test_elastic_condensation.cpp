@@ -16,7 +16,7 @@
 #include "rcdem/contact/elastic_condensation.hpp"
 #include "rcdem/contact/laws/bilinear_softening.hpp"
 #include "rcdem/core/rng.hpp"
-#include "rcdem/io/scenario.hpp"
+#include "rcdem/config/scenario.hpp"
 #include "rcdem/solver/simulation.hpp"
 #include "rcdem/specimens/specimen.hpp"
 

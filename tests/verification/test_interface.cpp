@@ -22,7 +22,7 @@
 #include "rcdem/contact/contact_state.hpp"
 #include "rcdem/contact/laws/elastic.hpp"
 #include "rcdem/contact/local_point_properties.hpp"
-#include "rcdem/io/scenario.hpp"
+#include "rcdem/config/scenario.hpp"
 #include "rcdem/io/specimen_output.hpp"
 #include "rcdem/reinforcement/rigid_cylinder.hpp"
 #include "rcdem/specimens/specimen.hpp"

@@ -22,7 +22,7 @@
 #include "rcdem/contact/laws/elastic.hpp"
 #include "rcdem/contact/local_point_properties.hpp"
 #include "rcdem/core/error.hpp"
-#include "rcdem/io/scenario.hpp"
+#include "rcdem/config/scenario.hpp"
 #include "rcdem/solver/simulation.hpp"
 #include "rcdem/specimens/specimen.hpp"
 #include "rcdem/state/bodies.hpp"

@@ -19,7 +19,7 @@
 #include "rcdem/contact/laws/elastic.hpp"
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/rng.hpp"
-#include "rcdem/io/scenario.hpp"
+#include "rcdem/config/scenario.hpp"
 #include "rcdem/solver/plates.hpp"
 #include "rcdem/solver/simulation.hpp"
 #include "rcdem/specimens/specimen.hpp"

@@ -20,7 +20,7 @@
 #include "dynamics_checks.hpp"
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/rng.hpp"
-#include "rcdem/io/scenario.hpp"
+#include "rcdem/config/scenario.hpp"
 #include "rcdem/solver/body_stiffness.hpp"
 #include "rcdem/solver/selective_mass_scaling.hpp"
 #include "rcdem/solver/simulation.hpp"

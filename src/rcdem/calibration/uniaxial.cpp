@@ -5,7 +5,7 @@
 
 #include "rcdem/core/error.hpp"
 #include "rcdem/io/atomic_file.hpp"
-#include "rcdem/solver/run.hpp"
+#include "rcdem/run/run.hpp"
 
 namespace rcdem {
 

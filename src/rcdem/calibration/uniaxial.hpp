@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "rcdem/io/scenario.hpp"
+#include "rcdem/config/scenario.hpp"
 
 namespace rcdem {
 

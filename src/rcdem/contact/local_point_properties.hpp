@@ -2,7 +2,7 @@
 // Stiffness and strength of one local contact point from its area, paper (3)-(6).
 #include "rcdem/contact/laws/local_point_state.hpp"
 #include "rcdem/core/types.hpp"
-#include "rcdem/io/scenario.hpp"
+#include "rcdem/config/scenario.hpp"
 
 namespace rcdem {
 

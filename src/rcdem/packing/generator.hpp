@@ -1,8 +1,8 @@
 #pragma once
 // Concrete specimen generation, paper 2.3 and SPEC 2: aggregate spheres to the given mass
 // content, mortar spheres until the target porosity, random positions, then relaxation.
-#include "rcdem/io/scenario.hpp"
-#include "rcdem/specimens/specimen_geometry.hpp"
+#include "rcdem/config/scenario.hpp"
+#include "rcdem/config/specimen_geometry.hpp"
 #include "rcdem/state/particles.hpp"
 
 namespace rcdem {

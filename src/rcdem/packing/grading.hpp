@@ -3,7 +3,7 @@
 // passing P(d) = (d / d_max)^q, whose number density is then proportional to d^(q - 4).
 #include "rcdem/core/rng.hpp"
 #include "rcdem/core/types.hpp"
-#include "rcdem/io/scenario.hpp"
+#include "rcdem/config/scenario.hpp"
 
 namespace rcdem {
 

@@ -17,7 +17,7 @@
 #include <cstdint>
 
 #include "rcdem/core/types.hpp"
-#include "rcdem/io/scenario.hpp"
+#include "rcdem/config/scenario.hpp"
 #include "rcdem/solver/energy.hpp"
 
 namespace rcdem {

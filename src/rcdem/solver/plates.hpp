@@ -11,8 +11,8 @@
 
 #include "rcdem/contact/laws/local_point_state.hpp"
 #include "rcdem/core/types.hpp"
-#include "rcdem/io/scenario.hpp"
-#include "rcdem/specimens/specimen_geometry.hpp"
+#include "rcdem/config/scenario.hpp"
+#include "rcdem/config/specimen_geometry.hpp"
 #include "rcdem/state/bodies.hpp"
 #include "rcdem/state/contact_network.hpp"
 

@@ -9,7 +9,7 @@
 #include "rcdem/contact/elastic_condensation.hpp"
 #include "rcdem/contact/laws/bilinear_softening.hpp"
 #include "rcdem/contact/laws/elastic.hpp"
-#include "rcdem/io/scenario.hpp"
+#include "rcdem/config/scenario.hpp"
 #include "rcdem/reinforcement/interaction_node.hpp"
 #include "rcdem/solver/body_contacts.hpp"
 #include "rcdem/solver/critical_time_step.hpp"
@@ -23,7 +23,7 @@
 namespace rcdem {
 
 namespace io {
-struct CheckpointAccess;  // io/checkpoint.cpp: saves and restores the state below
+struct CheckpointAccess;  // run/checkpoint.cpp: saves and restores the state below
 }
 
 // A bar pulled out by its first cylinder (pull-out tests): the cylinder's velocity is prescribed

@@ -3,7 +3,7 @@
 
 #include "rcdem/packing/space_filling_order.hpp"
 #include "rcdem/specimens/specimen.hpp"
-#include "rcdem/specimens/specimen_registry.hpp"
+#include "rcdem/config/specimen_registry.hpp"
 #include "rcdem/tessellation/cell_complex.hpp"
 
 namespace rcdem {

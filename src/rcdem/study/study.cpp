@@ -15,14 +15,14 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "rcdem/config/scenario.hpp"
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
 #include "rcdem/io/atomic_file.hpp"
-#include "rcdem/io/checkpoint.hpp"
 #include "rcdem/io/plot_tool.hpp"
-#include "rcdem/io/run_manifest.hpp"
-#include "rcdem/io/scenario.hpp"
-#include "rcdem/solver/run.hpp"
+#include "rcdem/run/checkpoint.hpp"
+#include "rcdem/run/run.hpp"
+#include "rcdem/run/run_manifest.hpp"
 
 namespace rcdem {
 
@@ -175,7 +175,11 @@ fs::path builtin_study_scenarios(const std::string& name, bool quick) {
       name, rel.string(), RCDEM_SOURCE_DIR);
 }
 
-int run_study(const StudyOptions& o) {
+namespace {
+
+// The cases of a study that --cases selects, each read and checked before anything runs: a typo
+// in the last case should not surface hours into the study.
+std::vector<std::pair<fs::path, Scenario>> load_cases(const StudyOptions& o) {
   const std::vector<fs::path> files = list_scenarios(o.scenarios);
   std::set<std::string> wanted(o.cases.begin(), o.cases.end());
   for (const auto& w : wanted) {
@@ -186,8 +190,6 @@ int run_study(const StudyOptions& o) {
       fail("--cases: no case '{}' in {} (the cases are: {})", w, o.scenarios.string(), known);
     }
   }
-  // Every scenario is read and checked before anything runs: a typo in the last case should not
-  // surface hours into the study.
   std::vector<std::pair<fs::path, Scenario>> todo;
   for (const auto& f : files) {
     if (!wanted.empty() && !wanted.count(f.stem().string())) continue;
@@ -195,143 +197,181 @@ int run_study(const StudyOptions& o) {
     validate_run(s);
     todo.emplace_back(f, std::move(s));
   }
+  return todo;
+}
+
+// One study's cases as they run: each a child `rcdem run`, with its share of the threads. The
+// child checkpoints (every 10 minutes and on SIGINT/SIGTERM), so an interrupted case resumes
+// where it stopped, and small specimens scale better across processes than across threads.
+class StudyRun {
+ public:
+  StudyRun(const StudyOptions& o, std::vector<std::pair<fs::path, Scenario>> todo)
+      : o_(o), todo_(std::move(todo)), quiet_(Progress::quiet_default()) {
+    for (std::size_t i = 0; i < todo_.size(); ++i) records_.push_back(initial_record(i));
+    write_tables(o_.out, records_, o_);
+  }
+
+  // Runs the pending cases, o.jobs at a time; false when a signal interrupted the study.
+  bool run_pending();
+  int failed() const { return failed_; }
+
+ private:
+  CaseRecord initial_record(std::size_t i);
+  fs::path prepare(std::size_t i);
+  void finish(std::size_t i, const std::string& error);
+  void start_next(std::map<pid_t, std::size_t>& running, std::size_t& next);
+
+  const StudyOptions& o_;
+  std::vector<std::pair<fs::path, Scenario>> todo_;
+  bool quiet_;
+  std::vector<CaseRecord> records_;
+  std::vector<std::size_t> pending_;
+  std::size_t done_ = 0;
+  int failed_ = 0;
+};
+
+// A case with a summary.json is finished (unless --force); any other is pending.
+CaseRecord StudyRun::initial_record(std::size_t i) {
+  const auto& [file, sc] = todo_[i];
+  CaseRecord rec;
+  rec.name = file.stem().string();
+  rec.model = rec.name.substr(0, rec.name.find('_'));
+  rec.interface = interface_name(sc);
+  rec.status = "not run";
+  const fs::path summary = o_.out / "cases" / rec.name / "summary.json";
+  if (fs::exists(summary) && !o_.force) {
+    rec.summary = read_json(summary);
+    rec.status = "finished";
+    if (!quiet_)
+      fmt::print(stderr, "{}: finished earlier (peak {:.4g} kN), not rerun\n", rec.name,
+                 rec.summary.value("peak_load_N", 0.0) / 1e3);
+  } else {
+    pending_.push_back(i);
+  }
+  return rec;
+}
+
+// A case directory without summary.json nor a checkpoint (interrupted during its set-up):
+// cleared, and the case starts again.
+fs::path StudyRun::prepare(std::size_t i) {
+  const fs::path dir = o_.out / "cases" / records_[i].name;
+  std::error_code e;
+  if (fs::exists(dir)) {
+    { const io::RunLock idle(dir, true); }  // refused while a run started by hand is live in it
+    fs::remove_all(dir, e);
+  }
+  if (e) fail("{}: cannot clear the interrupted case: {}", dir.string(), e.message());
+  fs::create_directories(dir);
+  return dir;
+}
+
+void StudyRun::finish(std::size_t i, const std::string& error) {
+  CaseRecord& rec = records_[i];
+  ++done_;
+  if (error.empty()) {
+    rec.summary = read_json(o_.out / "cases" / rec.name / "summary.json");
+    rec.status = "finished";
+    if (!quiet_)
+      fmt::print(stderr, "[{}/{}] {}: finished, peak {:.4g} kN, {:.0f} s\n", done_, pending_.size(),
+                 rec.name, rec.summary.value("peak_load_N", 0.0) / 1e3,
+                 rec.summary.value("seconds", 0.0));
+  } else {
+    // One case failing (an instability, say) should not cost the others.
+    rec.status = "failed";
+    rec.error = error;
+    ++failed_;
+    fmt::print(stderr, "[{}/{}] {}: failed: {}\n", done_, pending_.size(), rec.name, error);
+  }
+  write_tables(o_.out, records_, o_);  // after every case, so a stopped study keeps its table
+}
+
+// Starts pending cases until o.jobs run.
+void StudyRun::start_next(std::map<pid_t, std::size_t>& running, std::size_t& next) {
+  while (next < pending_.size() && static_cast<int>(running.size()) < o_.jobs) {
+    const std::size_t i = pending_[next++];
+    const fs::path existing = o_.out / "cases" / records_[i].name;
+    const bool resume = !o_.force && fs::exists(existing / "scenario.toml") &&
+                        !io::list_checkpoints(existing).empty();
+    try {
+      const fs::path dir = resume ? existing : prepare(i);
+      if (!quiet_)
+        fmt::print(stderr, "{}: {} ({}; log {})\n", records_[i].name,
+                   resume ? "resumed from its last checkpoint" : "started", todo_[i].first.string(),
+                   (dir / "run.log").string());
+      running[spawn_run(todo_[i].first, dir, o_.threads_per_job, resume)] = i;
+    } catch (const Error& e) {
+      finish(i, e.what());
+    }
+  }
+}
+
+bool StudyRun::run_pending() {
+  g_study_signal = 0;
+  struct sigaction sa {};
+  sa.sa_handler = on_study_signal;  // no SA_RESTART: waitpid returns EINTR
+  sigemptyset(&sa.sa_mask);
+  struct sigaction old_int {
+  }, old_term{};
+  ::sigaction(SIGINT, &sa, &old_int);
+  ::sigaction(SIGTERM, &sa, &old_term);
+  std::map<pid_t, std::size_t> running;
+  std::size_t next = 0;
+  while (next < pending_.size() || !running.empty()) {
+    start_next(running, next);
+    if (running.empty()) continue;
+    int status = 0;
+    const pid_t pid = ::waitpid(-1, &status, 0);
+    if (pid < 0 && errno == EINTR) {
+      // SIGINT/SIGTERM: pass it on (a terminal's ^C reached them already); each run then
+      // checkpoints and exits, and no further case starts.
+      const int sig = g_study_signal;
+      for (const auto& [child, _] : running) ::kill(child, sig);
+      next = pending_.size();
+      continue;
+    }
+    if (pid < 0) fail("waiting for the study's runs: {}", std::strerror(errno));
+    const auto it = running.find(pid);
+    if (it == running.end()) continue;
+    const std::size_t i = it->second;
+    running.erase(it);
+    const fs::path dir = o_.out / "cases" / records_[i].name;
+    const bool ok =
+        WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(dir / "summary.json");
+    if (!ok && g_study_signal != 0) {
+      ++done_;
+      records_[i].status = "interrupted";
+      write_tables(o_.out, records_, o_);
+      continue;
+    }
+    finish(i, ok ? "" : last_line(dir / "run.log"));
+  }
+  ::sigaction(SIGINT, &old_int, nullptr);
+  ::sigaction(SIGTERM, &old_term, nullptr);
+  return g_study_signal == 0;
+}
+
+}  // namespace
+
+int run_study(const StudyOptions& o) {
+  std::vector<std::pair<fs::path, Scenario>> todo = load_cases(o);
+  const std::size_t cases = todo.size();
   std::error_code ec;
   fs::create_directories(o.out / "cases", ec);
   if (ec) fail("{}: cannot create the study's directory: {}", o.out.string(), ec.message());
   // One study at a time in a directory: a second one would clear the first's cases as it sets up.
   const io::RunLock study_lock(o.out, true);
-
-  const bool quiet = Progress::quiet_default();
-  std::vector<CaseRecord> records;
-  std::vector<std::size_t> pending;
-  for (std::size_t i = 0; i < todo.size(); ++i) {
-    const auto& [file, sc] = todo[i];
-    CaseRecord rec;
-    rec.name = file.stem().string();
-    rec.model = rec.name.substr(0, rec.name.find('_'));
-    rec.interface = interface_name(sc);
-    rec.status = "not run";
-    const fs::path summary = o.out / "cases" / rec.name / "summary.json";
-    if (fs::exists(summary) && !o.force) {
-      rec.summary = read_json(summary);
-      rec.status = "finished";
-      if (!quiet)
-        fmt::print(stderr, "{}: finished earlier (peak {:.4g} kN), not rerun\n", rec.name,
-                   rec.summary.value("peak_load_N", 0.0) / 1e3);
-    } else {
-      pending.push_back(i);
-    }
-    records.push_back(std::move(rec));
-  }
-  write_tables(o.out, records, o);
-
-  int failed = 0;
-  std::size_t done = 0;
-  // A case directory without summary.json nor a checkpoint (interrupted during its set-up):
-  // cleared, and the case starts again.
-  const auto prepare = [&](std::size_t i) {
-    const fs::path dir = o.out / "cases" / records[i].name;
-    std::error_code e;
-    if (fs::exists(dir)) {
-      { const io::RunLock idle(dir, true); }  // refused while a run started by hand is live in it
-      fs::remove_all(dir, e);
-    }
-    if (e) fail("{}: cannot clear the interrupted case: {}", dir.string(), e.message());
-    fs::create_directories(dir);
-    return dir;
-  };
-  const auto finish = [&](std::size_t i, const std::string& error) {
-    CaseRecord& rec = records[i];
-    ++done;
-    if (error.empty()) {
-      rec.summary = read_json(o.out / "cases" / rec.name / "summary.json");
-      rec.status = "finished";
-      if (!quiet)
-        fmt::print(stderr, "[{}/{}] {}: finished, peak {:.4g} kN, {:.0f} s\n", done, pending.size(),
-                   rec.name, rec.summary.value("peak_load_N", 0.0) / 1e3,
-                   rec.summary.value("seconds", 0.0));
-    } else {
-      // One case failing (an instability, say) should not cost the others.
-      rec.status = "failed";
-      rec.error = error;
-      ++failed;
-      fmt::print(stderr, "[{}/{}] {}: failed: {}\n", done, pending.size(), rec.name, error);
-    }
-    write_tables(o.out, records, o);  // after every case, so a stopped study keeps its table
-  };
-
-  // Every case is a child `rcdem run`, with its share of the threads: the child checkpoints (every
-  // 10 minutes and on SIGINT/SIGTERM), so an interrupted case resumes where it stopped, and
-  // small specimens scale better across processes than across threads.
-  {
-    g_study_signal = 0;
-    struct sigaction sa {};
-    sa.sa_handler = on_study_signal;  // no SA_RESTART: waitpid returns EINTR
-    sigemptyset(&sa.sa_mask);
-    struct sigaction old_int {
-    }, old_term{};
-    ::sigaction(SIGINT, &sa, &old_int);
-    ::sigaction(SIGTERM, &sa, &old_term);
-    std::map<pid_t, std::size_t> running;
-    std::size_t next = 0;
-    while (next < pending.size() || !running.empty()) {
-      while (next < pending.size() && static_cast<int>(running.size()) < o.jobs) {
-        const std::size_t i = pending[next++];
-        const fs::path existing = o.out / "cases" / records[i].name;
-        const bool resume = !o.force && fs::exists(existing / "scenario.toml") &&
-                            !io::list_checkpoints(existing).empty();
-        try {
-          const fs::path dir = resume ? existing : prepare(i);
-          if (!quiet)
-            fmt::print(stderr, "{}: {} ({}; log {})\n", records[i].name,
-                       resume ? "resumed from its last checkpoint" : "started",
-                       todo[i].first.string(), (dir / "run.log").string());
-          running[spawn_run(todo[i].first, dir, o.threads_per_job, resume)] = i;
-        } catch (const Error& e) {
-          finish(i, e.what());
-        }
-      }
-      if (running.empty()) continue;
-      int status = 0;
-      const pid_t pid = ::waitpid(-1, &status, 0);
-      if (pid < 0 && errno == EINTR) {
-        // SIGINT/SIGTERM: pass it on (a terminal's ^C reached them already); each run then
-        // checkpoints and exits, and no further case starts.
-        const int sig = g_study_signal;
-        for (const auto& [child, _] : running) ::kill(child, sig);
-        next = pending.size();
-        continue;
-      }
-      if (pid < 0) fail("waiting for the study's runs: {}", std::strerror(errno));
-      const auto it = running.find(pid);
-      if (it == running.end()) continue;
-      const std::size_t i = it->second;
-      running.erase(it);
-      const fs::path dir = o.out / "cases" / records[i].name;
-      const bool ok =
-          WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(dir / "summary.json");
-      if (!ok && g_study_signal != 0) {
-        ++done;
-        records[i].status = "interrupted";
-        write_tables(o.out, records, o);
-        continue;
-      }
-      finish(i, ok ? "" : last_line(dir / "run.log"));
-    }
-    ::sigaction(SIGINT, &old_int, nullptr);
-    ::sigaction(SIGTERM, &old_term, nullptr);
-  }
-  if (g_study_signal != 0) {
+  StudyRun study(o, std::move(todo));
+  if (!study.run_pending()) {
     fmt::print(stderr,
                "study interrupted: every running case wrote a checkpoint; run the same command "
                "again to resume (finished cases are kept)\n");
     return -1;
   }
   if (!o.report_script.empty()) io::run_plot_tool(o.report_script, o.out);
-  if (!quiet)
+  if (!Progress::quiet_default())
     fmt::print(stderr, "study {}: {} of {} cases finished; tables and figures in {}\n", o.label,
-               todo.size() - static_cast<std::size_t>(failed), todo.size(), o.out.string());
-  return failed;
+               cases - static_cast<std::size_t>(study.failed()), cases, o.out.string());
+  return study.failed();
 }
 
 }  // namespace rcdem

@@ -4,8 +4,8 @@
 #include <vector>
 
 #include "rcdem/core/types.hpp"
-#include "rcdem/io/scenario.hpp"
-#include "rcdem/specimens/specimen_geometry.hpp"
+#include "rcdem/config/scenario.hpp"
+#include "rcdem/config/specimen_geometry.hpp"
 #include "rcdem/state/particles.hpp"
 
 namespace rcdem {

@@ -2,8 +2,8 @@
 // Turns the Voronoi cells into the VGCM-3D contact network (paper 2.1-2.2, SPEC 3): one bonded
 // contact per pair of particles sharing a facet of non-zero area, with local points at the
 // facet's centroid and vertices.
-#include "rcdem/io/scenario.hpp"
-#include "rcdem/specimens/specimen_geometry.hpp"
+#include "rcdem/config/scenario.hpp"
+#include "rcdem/config/specimen_geometry.hpp"
 #include "rcdem/state/contact_network.hpp"
 #include "rcdem/state/particles.hpp"
 #include "rcdem/tessellation/cell_complex.hpp"

@@ -6,7 +6,7 @@
 // contacts.
 #include <vector>
 
-#include "rcdem/io/scenario.hpp"
+#include "rcdem/config/scenario.hpp"
 #include "rcdem/state/contact_network.hpp"
 #include "rcdem/state/particles.hpp"
 #include "rcdem/tessellation/cell_complex.hpp"

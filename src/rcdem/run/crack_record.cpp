@@ -1,4 +1,4 @@
-#include "rcdem/io/crack_record.hpp"
+#include "rcdem/run/crack_record.hpp"
 
 #include <fmt/format.h>
 

@@ -1,9 +1,9 @@
 // The declaration of every scenario key: one place, read by the loader, print-schema and the docs.
 #include <limits>
 
-#include "rcdem/io/schema.hpp"
+#include "rcdem/config/schema.hpp"
 
-namespace rcdem::io {
+namespace rcdem::config {
 
 namespace {
 
@@ -49,8 +49,8 @@ KeyDecl choice(std::string path, std::optional<std::string> def, std::vector<std
   return k;
 }
 
-Schema build() {
-  Schema s;
+// The specimen and its particles.
+void declare_specimen_and_generation(Schema& s) {
   s.section("specimen", "The specimen's shape. The origin is at a corner; x along the length.");
   s.key(
       choice("specimen.shape", std::nullopt, {"box", "beam"},
@@ -102,7 +102,10 @@ Schema build() {
   s.section("generation.mortar", "Mortar spheres, added after the aggregate until the porosity.");
   s.key(positive("generation.mortar.d_min", 0.008, 10.0, "m", "Smallest mortar diameter."));
   s.key(positive("generation.mortar.d_max", 0.009, 10.0, "m", "Largest mortar diameter."));
+}
 
+// The contact network, its law and the solver.
+void declare_contact_and_solver(Schema& s) {
   s.section("tessellation", "VGCM-3D contact network (paper 2.1, SPEC 3).");
   s.key(choice("tessellation.kind", std::string("voronoi"), {"voronoi", "radical"},
                "'voronoi' (plain, as in the paper) or 'radical' (Laguerre, weighted by radius)."));
@@ -163,7 +166,10 @@ Schema build() {
               "their elastic limits from its sums (the same force and moment as its points give, "
               "to rounding) instead of visiting its points: faster, same results. false: visit "
               "every point every step."));
+}
 
+// The plates, what controls the test and when it stops.
+void declare_plates_loading_and_stop(Schema& s) {
   s.section("plates", "Rigid plates: one [plates.NAME] table per plate, NAME of your choice.");
   s.section("plates.*",
             "A rigid plate on one face of the specimen (platen, support, loading plate).");
@@ -221,7 +227,10 @@ Schema build() {
   s.key(real("stop.time", 0.0, Range{0.0, 1e6}, "s", "Stop at this simulated time."));
   s.key(typed("stop.steps", KeyType::Integer, std::int64_t{0}, Range{0.0, 1.0e12},
               "Stop after this many steps."));
+}
 
+// The bars and the outputs.
+void declare_bars_and_output(Schema& s) {
   s.section("bars", "Steel bars (paper 2.5-2.6, SPEC 7-8): one [bars.NAME] table per bar.");
   s.section("bars.*",
             "A straight steel bar: a chain of rigid cylinders with lumped interaction nodes.");
@@ -270,6 +279,14 @@ Schema build() {
                "VTU data encoding: 'binary' (base64, compact) or 'ascii' (readable)."));
   s.key(typed("output.write_facets", KeyType::Boolean, true, Range{},
               "Write facets.vtu (the contact facets as polygons)."));
+}
+
+Schema build() {
+  Schema s;
+  declare_specimen_and_generation(s);
+  declare_contact_and_solver(s);
+  declare_plates_loading_and_stop(s);
+  declare_bars_and_output(s);
   return s;
 }
 
@@ -280,4 +297,4 @@ const Schema& scenario_schema() {
   return schema;
 }
 
-}  // namespace rcdem::io
+}  // namespace rcdem::config

@@ -1,4 +1,4 @@
-#include "rcdem/solver/run_signals.hpp"
+#include "rcdem/run/run_signals.hpp"
 
 #include <unistd.h>
 

@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <string>
 
-namespace rcdem::io {
+namespace rcdem::config {
 
 // Scenario files and their includes are a few kB; this leaves room for long generated arrays.
 inline constexpr std::size_t kMaxScenarioBytes = 4u << 20;
@@ -27,4 +27,4 @@ std::string read_scenario_file(const std::filesystem::path& path, const std::str
 // syntax error to toml++.
 void check_scenario_nesting(const std::string& text, const std::string& source);
 
-}  // namespace rcdem::io
+}  // namespace rcdem::config

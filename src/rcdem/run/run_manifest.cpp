@@ -1,4 +1,4 @@
-#include "rcdem/io/run_manifest.hpp"
+#include "rcdem/run/run_manifest.hpp"
 
 #include <fcntl.h>
 #include <fmt/format.h>
@@ -19,7 +19,7 @@
 
 #include "rcdem/core/error.hpp"
 #include "rcdem/io/atomic_file.hpp"
-#include "rcdem/io/checkpoint.hpp"
+#include "rcdem/run/checkpoint.hpp"
 
 namespace rcdem::io {
 

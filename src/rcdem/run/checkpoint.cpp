@@ -1,4 +1,4 @@
-#include "rcdem/io/checkpoint.hpp"
+#include "rcdem/run/checkpoint.hpp"
 
 #include <fcntl.h>
 #include <fmt/format.h>
@@ -15,8 +15,8 @@
 #include "rcdem/core/build_info.hpp"
 #include "rcdem/core/error.hpp"
 #include "rcdem/io/atomic_file.hpp"
-#include "rcdem/io/crack_record.hpp"
-#include "rcdem/io/run_output.hpp"
+#include "rcdem/run/crack_record.hpp"
+#include "rcdem/run/run_output.hpp"
 #include "rcdem/solver/simulation.hpp"
 
 namespace rcdem::io {

@@ -15,7 +15,7 @@ class Simulation;
 
 namespace rcdem::io {
 
-struct CheckpointAccess;  // io/checkpoint.cpp: saves and restores the record
+struct CheckpointAccess;  // run/checkpoint.cpp: saves and restores the record
 
 class CrackRecord {
  public:

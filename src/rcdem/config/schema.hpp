@@ -11,7 +11,7 @@
 #include <variant>
 #include <vector>
 
-namespace rcdem::io {
+namespace rcdem::config {
 
 enum class KeyType { Real, Integer, Boolean, String, RealArray };
 
@@ -70,4 +70,4 @@ bool path_matches(const std::string& pattern, const std::string& path);
 // The schema of rcdem's scenario files (declared in scenario_schema.cpp).
 const Schema& scenario_schema();
 
-}  // namespace rcdem::io
+}  // namespace rcdem::config

@@ -1,4 +1,4 @@
-#include "rcdem/solver/run.hpp"
+#include "rcdem/run/run.hpp"
 
 #include <fcntl.h>
 #include <fmt/format.h>
@@ -27,15 +27,15 @@
 #include "rcdem/core/progress.hpp"
 #include "rcdem/core/simd_level.hpp"
 #include "rcdem/io/atomic_file.hpp"
-#include "rcdem/io/checkpoint.hpp"
-#include "rcdem/io/crack_record.hpp"
+#include "rcdem/run/checkpoint.hpp"
+#include "rcdem/run/crack_record.hpp"
 #include "rcdem/io/plot_tool.hpp"
-#include "rcdem/io/run_manifest.hpp"
-#include "rcdem/io/run_output.hpp"
-#include "rcdem/io/scenario_checks.hpp"
+#include "rcdem/run/run_manifest.hpp"
+#include "rcdem/run/run_output.hpp"
+#include "rcdem/config/scenario_checks.hpp"
 #include "rcdem/io/specimen_output.hpp"
-#include "rcdem/solver/run_signals.hpp"
-#include "rcdem/solver/run_warnings.hpp"
+#include "rcdem/run/run_signals.hpp"
+#include "rcdem/run/run_warnings.hpp"
 
 namespace rcdem {
 
@@ -97,7 +97,7 @@ void validate_run(const Scenario& s) {
     fail(
         "{}: stop.displacement, stop.load_drop and stop.post_peak_displacement need "
         "loading.control_plate (or loading.control_bar), the plate (or pulled bar) they refer to",
-        io::key_location(
+        config::key_location(
             s, s.stop.displacement > 0.0
                    ? "stop.displacement"
                    : (s.stop.load_drop > 0.0 ? "stop.load_drop" : "stop.post_peak_displacement")));
@@ -109,7 +109,7 @@ void validate_run(const Scenario& s) {
           "{}: plate '{}' moves away from the specimen (velocity {} m/s on the face {}{}, whose "
           "inward normal points to {}{}): an unglued plate only pushes; expected a velocity of the "
           "other sign, or glued = true to pull",
-          io::key_location(s, "plates." + p.name + ".velocity"), p.name, p.velocity,
+          config::key_location(s, "plates." + p.name + ".velocity"), p.name, p.velocity,
           static_cast<char>('x' + p.axis), p.side < 0 ? '-' : '+', p.side < 0 ? '+' : '-',
           static_cast<char>('x' + p.axis));
   bool moving = false;
@@ -126,7 +126,7 @@ void validate_run(const Scenario& s) {
     fail(
         "{}: stop.displacement can never trigger: the control plate '{}' does not move "
         "(velocity 0)",
-        io::key_location(s, "stop.displacement"), control->name);
+        config::key_location(s, "stop.displacement"), control->name);
 }
 
 Scenario run_directory_scenario(const fs::path& dir) {

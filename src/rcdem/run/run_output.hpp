@@ -11,7 +11,7 @@
 
 namespace rcdem::io {
 
-struct CheckpointAccess;  // io/checkpoint.cpp: saves and restores the series and rows
+struct CheckpointAccess;  // run/checkpoint.cpp: saves and restores the series and rows
 
 class SnapshotWriter {
  public:

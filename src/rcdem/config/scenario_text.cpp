@@ -1,4 +1,4 @@
-#include "rcdem/io/scenario_text.hpp"
+#include "rcdem/config/scenario_text.hpp"
 
 #include <fstream>
 #include <iterator>
@@ -6,7 +6,7 @@
 
 #include "rcdem/core/error.hpp"
 
-namespace rcdem::io {
+namespace rcdem::config {
 
 namespace fs = std::filesystem;
 
@@ -155,4 +155,4 @@ void check_scenario_nesting(const std::string& text, const std::string& source) 
   NestingScan(text, source).run();
 }
 
-}  // namespace rcdem::io
+}  // namespace rcdem::config

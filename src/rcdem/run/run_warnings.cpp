@@ -1,4 +1,4 @@
-#include "rcdem/solver/run_warnings.hpp"
+#include "rcdem/run/run_warnings.hpp"
 
 #include <fmt/format.h>
 

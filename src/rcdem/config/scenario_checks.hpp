@@ -6,9 +6,9 @@
 #include <cstdint>
 #include <string>
 
-#include "rcdem/io/scenario.hpp"
+#include "rcdem/config/scenario.hpp"
 
-namespace rcdem::io {
+namespace rcdem::config {
 
 // A run's peak memory per body (particle or interface sphere), measured: the full AN4 NL-B beam
 // (26,478 particles, 171,668 contacts) peaks at 449 MB resident after 20 steps, 17 kB each
@@ -33,4 +33,4 @@ void check_bar_layout(const Scenario& s);
 // Plates: at most kMaxPlates, and no two on one face whose rectangles overlap.
 void check_plate_layout(const Scenario& s);
 
-}  // namespace rcdem::io
+}  // namespace rcdem::config

@@ -1,4 +1,4 @@
-#include "rcdem/io/scenario.hpp"
+#include "rcdem/config/scenario.hpp"
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -6,20 +6,20 @@
 #include <cmath>
 #include <sstream>
 
+#include "rcdem/config/scenario_checks.hpp"
+#include "rcdem/config/scenario_text.hpp"
+#include "rcdem/config/specimen_geometry.hpp"
+#include "rcdem/config/specimen_registry.hpp"
 #include "rcdem/core/error.hpp"
-#include "rcdem/io/scenario_checks.hpp"
-#include "rcdem/io/scenario_text.hpp"
-#include "rcdem/specimens/specimen_geometry.hpp"
-#include "rcdem/specimens/specimen_registry.hpp"
 
 namespace rcdem {
 
 namespace {
 
-using io::KeyDecl;
-using io::KeyType;
-using io::Schema;
-using io::Value;
+using config::KeyDecl;
+using config::KeyType;
+using config::Schema;
+using config::Value;
 
 struct Reader {
   const Schema& schema;
@@ -55,7 +55,7 @@ struct Reader {
   }
 
   // Subnormal numbers (below 2.2e-308) are no physical value: out of every range.
-  bool in_range(double v, const io::Range& r) const {
+  bool in_range(double v, const config::Range& r) const {
     if (!std::isfinite(v) || std::fpclassify(v) == FP_SUBNORMAL) return false;
     if (r.min_exclusive ? !(v > r.min) : !(v >= r.min)) return false;
     if (r.max_exclusive ? !(v < r.max) : !(v <= r.max)) return false;
@@ -137,7 +137,7 @@ struct Reader {
         if (decl) bad_value(node, *decl, "a table", path);
         if (!schema.is_section(path)) unknown(node, path, prefix);
         for (const auto& sec : schema.sections())
-          if (sec.path.find('*') != std::string::npos && io::path_matches(sec.path, path)) {
+          if (sec.path.find('*') != std::string::npos && config::path_matches(sec.path, path)) {
             instances[sec.path].push_back(path);
             lines[path] = static_cast<int>(node.source().begin.line);
           }
@@ -249,15 +249,7 @@ void check_consistency(const Reader& r, const Scenario& s) {
         aggregate_fraction, 1.0 - g.porosity);
 }
 
-Scenario convert(Reader& r, const std::string& text) {
-  // toml++ walks keys in sorted order: put the named sections back in the order of the file.
-  for (auto& [pattern, names] : r.instances)
-    std::stable_sort(names.begin(), names.end(), [&](const std::string& a, const std::string& b) {
-      return r.lines.at(a) < r.lines.at(b);
-    });
-  Scenario s;
-  s.source = r.file;
-  s.text = text;
+void convert_specimen_and_generation(const Reader& r, Scenario& s) {
   const auto& size = std::get<std::vector<double>>(r.values.at("specimen.size"));
   s.specimen.shape = r.string("specimen.shape");
   s.specimen.size = Vec3(size[0], size[1], size[2]);
@@ -279,7 +271,9 @@ Scenario convert(Reader& r, const std::string& text) {
   g.fuller_exponent = r.real("generation.aggregate.fuller_exponent");
   g.mortar_d_min = r.real("generation.mortar.d_min");
   g.mortar_d_max = r.real("generation.mortar.d_max");
+}
 
+void convert_contact_and_solver(const Reader& r, Scenario& s) {
   s.tessellation = r.string("tessellation.kind") == "radical" ? TessellationKind::Radical
                                                               : TessellationKind::Voronoi;
   auto& c = s.contact;
@@ -314,86 +308,91 @@ Scenario convert(Reader& r, const std::string& text) {
   s.solver.particle_rotational_inertia_scaling =
       r.real("solver.particle_rotational_inertia_scaling");
   s.solver.condense_elastic_contacts = r.boolean("solver.condense_elastic_contacts");
-  for (const auto& inst : r.instances["plates.*"]) {
-    PlateSettings p;
-    p.name = inst.substr(inst.find('.') + 1);
-    const std::string face = r.string(inst + ".face");
-    p.axis = face[0] - 'x';
-    p.side = face[1] == '-' ? -1 : 1;
-    p.extent = std::get<std::vector<double>>(r.values.at(inst + ".extent"));
-    if (!p.extent.empty() && (p.extent[0] >= p.extent[1] || p.extent[2] >= p.extent[3]))
+}
+
+// One [plates.NAME] section; `s` gives the specimen's size its extent is checked against.
+PlateSettings convert_plate(const Reader& r, const Scenario& s, const std::string& inst) {
+  PlateSettings p;
+  p.name = inst.substr(inst.find('.') + 1);
+  const std::string face = r.string(inst + ".face");
+  p.axis = face[0] - 'x';
+  p.side = face[1] == '-' ? -1 : 1;
+  p.extent = std::get<std::vector<double>>(r.values.at(inst + ".extent"));
+  if (!p.extent.empty() && (p.extent[0] >= p.extent[1] || p.extent[2] >= p.extent[3]))
+    fail(
+        "{}: key '{}.extent': expected [u_min, u_max, v_min, v_max] with u_min < u_max and "
+        "v_min < v_max",
+        r.at(inst + ".extent"), inst);
+  if (!p.extent.empty()) {
+    const auto [u, v] = face_axes(p.axis);
+    if (p.extent[1] <= 0.0 || p.extent[0] >= s.specimen.size[u] || p.extent[3] <= 0.0 ||
+        p.extent[2] >= s.specimen.size[v])
       fail(
-          "{}: key '{}.extent': expected [u_min, u_max, v_min, v_max] with u_min < u_max and "
-          "v_min < v_max",
-          r.at(inst + ".extent"), inst);
-    if (!p.extent.empty()) {
-      const auto [u, v] = face_axes(p.axis);
-      if (p.extent[1] <= 0.0 || p.extent[0] >= s.specimen.size[u] || p.extent[3] <= 0.0 ||
-          p.extent[2] >= s.specimen.size[v])
+          "{}: key '{}.extent': the rectangle [{}, {}] x [{}, {}] m misses the specimen's "
+          "face [0, {}] x [0, {}] m",
+          r.at(inst + ".extent"), inst, p.extent[0], p.extent[1], p.extent[2], p.extent[3],
+          s.specimen.size[u], s.specimen.size[v]);
+  }
+  p.velocity = r.real(inst + ".velocity");
+  p.ramp_time = r.real(inst + ".ramp_time");
+  p.glued = r.boolean(inst + ".glued");
+  p.friction = r.real(inst + ".friction");
+  return p;
+}
+
+// One [bars.NAME] section, checked against the specimen in `s`.
+BarSettings convert_bar(const Reader& r, const Scenario& s, const std::string& inst) {
+  BarSettings b;
+  b.name = inst.substr(inst.find('.') + 1);
+  const auto& a = std::get<std::vector<double>>(r.values.at(inst + ".start"));
+  const auto& e = std::get<std::vector<double>>(r.values.at(inst + ".end"));
+  b.start = Vec3(a[0], a[1], a[2]);
+  b.end = Vec3(e[0], e[1], e[2]);
+  b.diameter = r.real(inst + ".diameter");
+  b.cylinder_length = r.real(inst + ".cylinder_length");
+  b.E = r.real(inst + ".E");
+  b.nu = r.real(inst + ".nu");
+  b.f_y = r.real(inst + ".f_y");
+  b.density = r.real(inst + ".density");
+  const std::string law = r.string(inst + ".interface");
+  b.interface = law == "EL"     ? InterfaceLaw::EL
+                : law == "NL-A" ? InterfaceLaw::NL_A
+                                : InterfaceLaw::NL_B;
+  b.interface_strength_scale = r.real(inst + ".interface_strength_scale");
+  b.interface_energy_scale = r.real(inst + ".interface_energy_scale");
+  if (b.interface == InterfaceLaw::EL &&
+      (b.interface_strength_scale != 1.0 || b.interface_energy_scale != 1.0)) {
+    const std::string key = inst + (b.interface_strength_scale != 1.0 ? ".interface_strength_scale"
+                                                                      : ".interface_energy_scale");
+    fail(
+        "{}: key '{}': expected only with a BL interface (NL-A, NL-B); interface = \"EL\" "
+        "has no strength to scale",
+        r.at(key), key);
+  }
+  b.sphere_spacing = r.real(inst + ".sphere_spacing");
+  b.pull_velocity = r.real(inst + ".pull_velocity");
+  b.pull_ramp_time = r.real(inst + ".pull_ramp_time");
+  const Real length = (b.end - b.start).norm();
+  if (length < 2.0 * b.diameter)
+    fail("{}: bar '{}' is {} m long: expected at least two diameters ({} m) between start and end",
+         r.at(inst + ".end"), b.name, length, 2.0 * b.diameter);
+  // The bar must lie inside the specimen, with a cover of one radius across it (along it, an
+  // end may reach a face: a pull-out bar leaves the specimen there).
+  const Vec3 dir = (b.end - b.start) / length;
+  for (const auto* p : {&b.start, &b.end})
+    for (int ax = 0; ax < 3; ++ax) {
+      const Real cover = std::abs(dir[ax]) > 0.999 ? 0.0 : 0.5 * b.diameter;
+      if ((*p)[ax] < cover || (*p)[ax] > s.specimen.size[ax] - cover)
         fail(
-            "{}: key '{}.extent': the rectangle [{}, {}] x [{}, {}] m misses the specimen's "
-            "face [0, {}] x [0, {}] m",
-            r.at(inst + ".extent"), inst, p.extent[0], p.extent[1], p.extent[2], p.extent[3],
-            s.specimen.size[u], s.specimen.size[v]);
+            "{}: bar '{}': its {} ({}, {}, {}) m is not inside the specimen with half a "
+            "diameter of cover",
+            r.at(inst + (p == &b.start ? ".start" : ".end")), b.name,
+            p == &b.start ? "start" : "end", (*p)[0], (*p)[1], (*p)[2]);
     }
-    p.velocity = r.real(inst + ".velocity");
-    p.ramp_time = r.real(inst + ".ramp_time");
-    p.glued = r.boolean(inst + ".glued");
-    p.friction = r.real(inst + ".friction");
-    s.plates.push_back(p);
-  }
-  for (const auto& inst : r.instances["bars.*"]) {
-    BarSettings b;
-    b.name = inst.substr(inst.find('.') + 1);
-    const auto& a = std::get<std::vector<double>>(r.values.at(inst + ".start"));
-    const auto& e = std::get<std::vector<double>>(r.values.at(inst + ".end"));
-    b.start = Vec3(a[0], a[1], a[2]);
-    b.end = Vec3(e[0], e[1], e[2]);
-    b.diameter = r.real(inst + ".diameter");
-    b.cylinder_length = r.real(inst + ".cylinder_length");
-    b.E = r.real(inst + ".E");
-    b.nu = r.real(inst + ".nu");
-    b.f_y = r.real(inst + ".f_y");
-    b.density = r.real(inst + ".density");
-    const std::string law = r.string(inst + ".interface");
-    b.interface = law == "EL"     ? InterfaceLaw::EL
-                  : law == "NL-A" ? InterfaceLaw::NL_A
-                                  : InterfaceLaw::NL_B;
-    b.interface_strength_scale = r.real(inst + ".interface_strength_scale");
-    b.interface_energy_scale = r.real(inst + ".interface_energy_scale");
-    if (b.interface == InterfaceLaw::EL &&
-        (b.interface_strength_scale != 1.0 || b.interface_energy_scale != 1.0)) {
-      const std::string key =
-          inst + (b.interface_strength_scale != 1.0 ? ".interface_strength_scale"
-                                                    : ".interface_energy_scale");
-      fail(
-          "{}: key '{}': expected only with a BL interface (NL-A, NL-B); interface = \"EL\" "
-          "has no strength to scale",
-          r.at(key), key);
-    }
-    b.sphere_spacing = r.real(inst + ".sphere_spacing");
-    b.pull_velocity = r.real(inst + ".pull_velocity");
-    b.pull_ramp_time = r.real(inst + ".pull_ramp_time");
-    const Real length = (b.end - b.start).norm();
-    if (length < 2.0 * b.diameter)
-      fail(
-          "{}: bar '{}' is {} m long: expected at least two diameters ({} m) between start and end",
-          r.at(inst + ".end"), b.name, length, 2.0 * b.diameter);
-    // The bar must lie inside the specimen, with a cover of one radius across it (along it, an
-    // end may reach a face: a pull-out bar leaves the specimen there).
-    const Vec3 dir = (b.end - b.start) / length;
-    for (const auto* p : {&b.start, &b.end})
-      for (int ax = 0; ax < 3; ++ax) {
-        const Real cover = std::abs(dir[ax]) > 0.999 ? 0.0 : 0.5 * b.diameter;
-        if ((*p)[ax] < cover || (*p)[ax] > s.specimen.size[ax] - cover)
-          fail(
-              "{}: bar '{}': its {} ({}, {}, {}) m is not inside the specimen with half a "
-              "diameter of cover",
-              r.at(inst + (p == &b.start ? ".start" : ".end")), b.name,
-              p == &b.start ? "start" : "end", (*p)[0], (*p)[1], (*p)[2]);
-      }
-    s.bars.push_back(b);
-  }
+  return b;
+}
+
+void convert_loading_stop_and_output(const Reader& r, Scenario& s) {
   s.control_plate = r.string("loading.control_plate");
   s.control_bar = r.string("loading.control_bar");
   s.loading_rate.adaptive = r.boolean("loading.adaptive_rate");
@@ -427,17 +426,33 @@ Scenario convert(Reader& r, const std::string& text) {
   s.output.snapshots = r.integer("output.snapshots");
   s.output.binary_vtu = r.string("output.vtu_encoding") == "binary";
   s.output.write_facets = r.boolean("output.write_facets");
+}
+
+Scenario convert(Reader& r, const std::string& text) {
+  // toml++ walks keys in sorted order: put the named sections back in the order of the file.
+  for (auto& [pattern, names] : r.instances)
+    std::stable_sort(names.begin(), names.end(), [&](const std::string& a, const std::string& b) {
+      return r.lines.at(a) < r.lines.at(b);
+    });
+  Scenario s;
+  s.source = r.file;
+  s.text = text;
+  convert_specimen_and_generation(r, s);
+  convert_contact_and_solver(r, s);
+  for (const auto& inst : r.instances["plates.*"]) s.plates.push_back(convert_plate(r, s, inst));
+  for (const auto& inst : r.instances["bars.*"]) s.bars.push_back(convert_bar(r, s, inst));
+  convert_loading_stop_and_output(r, s);
   s.key_line = r.lines;
   check_consistency(r, s);
-  io::check_model_size(s);
-  io::check_bar_layout(s);
-  io::check_plate_layout(s);
+  config::check_model_size(s);
+  config::check_bar_layout(s);
+  config::check_plate_layout(s);
   validate_specimen(s);
   return s;
 }
 
 toml::table parse_toml(const std::string& text, const std::string& source_name) {
-  io::check_scenario_nesting(text, source_name);
+  config::check_scenario_nesting(text, source_name);
   try {
     return toml::parse(text, source_name);
   } catch (const toml::parse_error& e) {
@@ -467,7 +482,8 @@ void read_includes(toml::table& table, const std::string& source_name, Reader& r
   for (const auto& f : files) {
     if (f.empty()) fail("{}: an empty file name", at);
     const auto path = std::filesystem::path(f).is_absolute() ? std::filesystem::path(f) : dir / f;
-    const toml::table sub = parse_toml(io::read_scenario_file(path, "include", at), path.string());
+    const toml::table sub =
+        parse_toml(config::read_scenario_file(path, "include", at), path.string());
     if (sub.contains("include")) fail("{}: an included file may not include others", path.string());
     reader.file = path.string();
     reader.read_table(sub, "");
@@ -480,7 +496,7 @@ void read_includes(toml::table& table, const std::string& source_name, Reader& r
 
 Scenario parse_scenario(const std::string& text, const std::string& source_name) {
   toml::table table = parse_toml(text, source_name);
-  Reader reader{io::scenario_schema(), source_name, {}, {}, {}};
+  Reader reader{config::scenario_schema(), source_name, {}, {}, {}};
   read_includes(table, source_name, reader);
   reader.read_table(table, "");
   reader.fill_defaults();
@@ -488,7 +504,7 @@ Scenario parse_scenario(const std::string& text, const std::string& source_name)
 }
 
 Scenario load_scenario(const std::filesystem::path& path) {
-  Scenario s = parse_scenario(io::read_scenario_file(path, "scenario"), path.string());
+  Scenario s = parse_scenario(config::read_scenario_file(path, "scenario"), path.string());
   s.source = path;
   return s;
 }

@@ -1,4 +1,4 @@
-#include "rcdem/specimens/specimen_geometry.hpp"
+#include "rcdem/config/specimen_geometry.hpp"
 
 #include <algorithm>
 

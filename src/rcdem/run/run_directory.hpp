@@ -5,7 +5,7 @@
 #include <optional>
 #include <vector>
 
-#include "rcdem/io/run_manifest.hpp"
+#include "rcdem/run/run_manifest.hpp"
 
 namespace rcdem::io {
 

@@ -1,4 +1,4 @@
-#include "rcdem/io/run_output.hpp"
+#include "rcdem/run/run_output.hpp"
 
 #include <fmt/format.h>
 

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "rcdem/specimens/specimen_geometry.hpp"
+#include "rcdem/config/specimen_geometry.hpp"
 
 namespace rcdem {
 

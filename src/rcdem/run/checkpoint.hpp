@@ -44,7 +44,7 @@ inline std::uint64_t fnv1a64(std::string_view s, std::uint64_t h = 0xcbf29ce4842
 // the points' reference positions and constants, the plate contacts' points and constants.
 std::uint64_t specimen_fingerprint(const Simulation& sim);
 
-// The run loop's own scalars (solver/run.cpp).
+// The run loop's own scalars (run/run.cpp).
 struct LoopState {
   double peak = 0.0;  // largest load so far
   double peak_load = 0.0, displacement_at_peak = 0.0, kinetic_over_strain_at_peak = 0.0;

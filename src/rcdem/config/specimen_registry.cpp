@@ -1,7 +1,7 @@
-#include "rcdem/specimens/specimen_registry.hpp"
+#include "rcdem/config/specimen_registry.hpp"
 
 #include "rcdem/core/error.hpp"
-#include "rcdem/io/scenario.hpp"
+#include "rcdem/config/scenario.hpp"
 
 namespace rcdem {
 

@@ -1,4 +1,4 @@
-#include "rcdem/io/run_directory.hpp"
+#include "rcdem/run/run_directory.hpp"
 
 #include <unistd.h>
 

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "rcdem/core/types.hpp"
-#include "rcdem/io/scenario.hpp"
+#include "rcdem/config/scenario.hpp"
 
 namespace rcdem {
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "rcdem/core/types.hpp"
-#include "rcdem/io/schema.hpp"
+#include "rcdem/config/schema.hpp"
 
 namespace rcdem {
 

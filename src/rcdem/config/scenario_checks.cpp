@@ -1,4 +1,4 @@
-#include "rcdem/io/scenario_checks.hpp"
+#include "rcdem/config/scenario_checks.hpp"
 
 #include <unistd.h>
 
@@ -6,10 +6,10 @@
 #include <cmath>
 
 #include "rcdem/core/error.hpp"
-#include "rcdem/specimens/specimen_geometry.hpp"
-#include "rcdem/specimens/specimen_registry.hpp"
+#include "rcdem/config/specimen_geometry.hpp"
+#include "rcdem/config/specimen_registry.hpp"
 
-namespace rcdem::io {
+namespace rcdem::config {
 
 std::string key_location(const Scenario& s, const std::string& key) {
   const auto it = s.key_line.find(key);
@@ -167,4 +167,4 @@ void check_plate_layout(const Scenario& s) {
     }
 }
 
-}  // namespace rcdem::io
+}  // namespace rcdem::config

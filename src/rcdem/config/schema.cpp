@@ -1,11 +1,11 @@
-#include "rcdem/io/schema.hpp"
+#include "rcdem/config/schema.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 
-namespace rcdem::io {
+namespace rcdem::config {
 
 Schema& Schema::section(std::string path, std::string doc) {
   sections_.push_back({std::move(path), std::move(doc)});
@@ -150,4 +150,4 @@ void Schema::print_template(std::ostream& out) const {
   }
 }
 
-}  // namespace rcdem::io
+}  // namespace rcdem::config
