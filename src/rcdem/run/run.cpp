@@ -22,32 +22,28 @@
 #include <omp.h>
 #endif
 
+#include "rcdem/config/scenario_checks.hpp"
 #include "rcdem/core/build_info.hpp"
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
 #include "rcdem/core/simd_level.hpp"
 #include "rcdem/io/atomic_file.hpp"
+#include "rcdem/io/plot_tool.hpp"
+#include "rcdem/io/specimen_output.hpp"
 #include "rcdem/run/checkpoint.hpp"
 #include "rcdem/run/crack_record.hpp"
-#include "rcdem/io/plot_tool.hpp"
+#include "rcdem/run/observers.hpp"
 #include "rcdem/run/run_manifest.hpp"
 #include "rcdem/run/run_output.hpp"
-#include "rcdem/config/scenario_checks.hpp"
-#include "rcdem/io/specimen_output.hpp"
+#include "rcdem/run/run_session.hpp"
 #include "rcdem/run/run_signals.hpp"
 #include "rcdem/run/run_warnings.hpp"
 
 namespace rcdem {
 
 namespace fs = std::filesystem;
-using io::Inputs;
 using io::iso_now;
-using io::Manifest;
 using io::read_text;
-using io::remove_stale_temporaries;
-using io::RunLock;
-using io::scenario_inputs;
-using io::thread_count;
 
 namespace {
 
@@ -165,467 +161,435 @@ RunSummary run_scenario(const Scenario& sc, const fs::path& out,
   return run_scenario(sc, out, RunOptions{}, on_step);
 }
 
-RunSummary run_scenario(const Scenario& sc, const fs::path& out, const RunOptions& opt,
-                        const std::function<void(const Simulation&)>& on_step) {
-  validate_run(sc);
-  const auto wall_start = std::chrono::steady_clock::now();
-  const bool checkpoints = opt.resume || opt.handle_signals || opt.checkpoint_every_steps > 0 ||
-                           opt.checkpoint_every_seconds > 0.0;
-  RunLock lock(out, checkpoints && !opt.lock_held);
-  SignalGuard signals(opt.handle_signals, out / "run.lock", opt.resume);
-  const bool quiet = Progress::quiet_default();
+namespace {
 
-  // The manifest, started (or, resuming, continued) before anything else can fail.
-  Manifest manifest(out, opt.manifest);
-  fs::path scenario_file;
-  if (opt.resume) {
-    manifest.load_existing();
-    const auto& j = manifest.json();
-    scenario_file = j.contains("scenario_file") && j["scenario_file"].is_string()
-                        ? fs::path(j["scenario_file"].get<std::string>())
-                        : out / "scenario.toml";
-  } else if (!sc.source.empty()) {
-    std::error_code ec;
-    scenario_file = fs::absolute(sc.source, ec);
-  }
-  const Inputs inputs = scenario_inputs(sc.text, scenario_file);
-  if (opt.resume && manifest.json().contains("inputs") && manifest.json()["inputs"].is_array()) {
-    // Which input changed, if one did (the checkpoint would only say that something did).
-    for (const auto& was : manifest.json()["inputs"]) {
-      const std::string path = was.value("path", ""), hash = was.value("fnv1a64", "");
-      bool found = false;
-      for (const auto& now : inputs.list)
-        if (now["path"] == path) {
-          found = true;
-          if (now["fnv1a64"] != hash)
-            fail(
-                "cannot resume '{}': the scenario input '{}' changed since the run started "
-                "(FNV-1a {} then, {} now); restore it, or start a new run",
-                out.string(), path, hash, now["fnv1a64"].get<std::string>());
-        }
-      if (!found)
-        fail("cannot resume '{}': the scenario no longer reads '{}' as it did when the run started",
-             out.string(), path);
-    }
-  }
-  {
-    auto& j = manifest.json();
-    const std::string version = build_version(), git = build_git_hash();
-    if (!opt.resume) {
-      j["manifest_version"] = 1;
-      j["scenario"] = sc.source.string();
-      j["scenario_file"] = scenario_file.string();
-      j["scenario_copy"] = "scenario.toml";
-      j["inputs"] = inputs.list;
-      j["inputs_hash"] = fmt::format("{:016x}", inputs.hash);
-      j["seed"] = sc.generation.seed;
-      j["command"] = opt.command;
-      j["rcdem_version"] = version;
-      j["git_hash"] = git;
-      j["build"] = build_flavour();
-      j["threads"] = thread_count();
-      j["start_time"] = iso_now();
-      j["end_time"] = nullptr;
-      j["exit_state"] = "running";
-      j["steps"] = 0;
-      j["time_s"] = 0.0;
-      j["wall_seconds"] = 0.0;
-      j["last_checkpoint"] = nullptr;
-      j["sessions"] = nlohmann::ordered_json::array();
-    }
-    j["rcdem_version"] = version;
-    j["git_hash"] = git;
-    j["build"] = build_flavour();
-    j["threads"] = thread_count();
-    j["exit_state"] = "running";
-    j["end_time"] = nullptr;
-    j["sessions"].push_back({{"start_time", iso_now()},
-                             {"end_time", nullptr},
-                             {"rcdem_version", version},
-                             {"git_hash", git},
-                             {"build", build_flavour()},
-                             {"threads", thread_count()},
-                             {"command", opt.command},
-                             {"resumed_from", nullptr},
-                             {"exit_state", "running"}});
-    if (!opt.checkpoint_every_text.empty()) {
-      j["checkpoint_every"] = opt.checkpoint_every_text;
-      j["sessions"].back()["checkpoint_every"] = opt.checkpoint_every_text;
-    }
-  }
-  // A run refused during its set-up leaves no manifest (nor anything else) behind.
-  bool manifest_started = opt.resume;
-  const auto record_failure = [&](const std::string& what) {
-    if (!manifest_started) return;
-    auto& j = manifest.json();
-    j["exit_state"] = "failed";
-    j["error"] = what;
-    j["end_time"] = iso_now();
-    manifest.session()["exit_state"] = "failed";
-    manifest.session()["error"] = what;
-    manifest.session()["end_time"] = j["end_time"];
-    manifest.write_quietly();
-  };
-  if (!opt.resume) {
-    // --force over an earlier run: its checkpoints must not be resumed into this one.
-    io::remove_checkpoints(out);
-  } else {
-    remove_stale_temporaries(out);
-  }
+// The test's load and displacement: a control plate's, or a pulled bar's.
+struct Control {
+  const Plate* plate = nullptr;
+  const PulledBar* bar = nullptr;
+  Control(const Simulation& sim, const Scenario& sc)
+      : plate(sim.find_plate(sc.control_plate)), bar(sim.find_pulled_bar(sc.control_bar)) {}
+  Real load() const { return plate ? plate->load() : bar ? bar->load() : 0.0; }
+  Real displacement() const { return plate ? plate->displacement : bar ? bar->displacement : 0.0; }
+  Real speed() const { return plate ? std::abs(plate->velocity) : bar ? bar->speed : 0.0; }
+  Real ramp() const { return plate ? plate->ramp_time : bar ? bar->ramp_time : 0.0; }
+};
 
+// How many steps the run will take, where a rule tells: for the history and snapshot spacing and
+// the progress line.
+Real expected_steps(const Scenario& sc, const Simulation& sim, const Control& control) {
+  Real expected = std::numeric_limits<Real>::infinity();
+  if (sc.stop.steps > 0) expected = std::min(expected, static_cast<Real>(sc.stop.steps));
+  if (sc.stop.time > 0.0) expected = std::min(expected, sc.stop.time / sim.time_step());
+  if (sc.stop.displacement > 0.0 && control.speed() > 0.0)
+    expected = std::min(expected, (sc.stop.displacement / control.speed() + 0.5 * control.ramp()) /
+                                      sim.time_step());
+  return std::isfinite(expected) ? expected : 1e5;  // load_drop only: a guess for the spacing
+}
+
+std::int64_t spacing(Real expected, std::int64_t count) {
+  return std::max<std::int64_t>(1, static_cast<std::int64_t>(expected / static_cast<Real>(count)));
+}
+
+void print_set_up(const Scenario& sc, const Simulation& sim) {
+  fmt::print(stderr,
+             "time step {:.4g} s (stable estimate {:.4g} s, set by {}; safety {}); {} bodies, "
+             "{} contacts, {} local points, {} plate contacts\n",
+             sim.time_step(), sim.stable_time_step(), sim.stable_time_step_limit(),
+             sc.solver.time_step > 0.0 ? sc.solver.time_step / sim.stable_time_step()
+                                       : sc.solver.dt_safety,
+             sim.bodies().size(), sim.specimen().contacts.contact_count(),
+             sim.specimen().contacts.point_count(), sim.plate_contacts().size());
+}
+
+// One run's loop over steps and what it writes: the observers (peak, history and crack record,
+// snapshots, progress), the stop rules, checkpoints and signals, and the summary at the end.
+class RunLoop {
+ public:
+  RunLoop(const Scenario& sc, const fs::path& out, const RunOptions& opt, RunSession& session,
+          Simulation& sim);
+  // Steps until a stop rule triggers (true) or a signal interrupts (false).
+  bool run(const std::function<void(const Simulation&)>& on_step);
+  RunSummary finish();
+  RunSummary interrupted();
+
+ private:
+  void restore();
+  void check_spacing_or_start();
+  Real step_once();
+  void checkpoint(std::chrono::steady_clock::time_point now);
+  bool checkpoint_due(std::int64_t n, std::chrono::steady_clock::time_point now) const;
+  Error with_resume_hint(const Error& e) const;
+  void write_final_outputs();
+  nlohmann::ordered_json summary_json(const RunSummary& r, double wall, double loop_s);
+  void finish_manifest(const RunSummary& r, double wall, std::chrono::steady_clock::time_point end);
+  RunSummary partial_summary() const;
+
+  const Scenario& sc_;
+  const fs::path out_;
+  const RunOptions& opt_;
+  RunSession& session_;
+  Simulation& sim_;
+  const Control control_;
+  io::History history_;
+  io::SnapshotWriter snapshots_;
+  io::CrackRecord cracks_;
+  io::LoopState loop_;
+  const io::CheckpointParts parts_;
+  Real expected_ = 0.0;
+  double wall_before_ = 0.0, loop_before_ = 0.0;
+  std::chrono::steady_clock::time_point loop_start_, last_checkpoint_;
+  std::int64_t checkpointed_step_ = -1;
+  fs::path last_checkpoint_file_;
+  std::string stop_reason_;
+  int signal_ = 0;
+};
+
+RunLoop::RunLoop(const Scenario& sc, const fs::path& out, const RunOptions& opt,
+                 RunSession& session, Simulation& sim)
+    : sc_(sc),
+      out_(out),
+      opt_(opt),
+      session_(session),
+      sim_(sim),
+      control_(sim, sc),
+      history_(sim, sc.control_plate.empty() ? sc.control_bar : sc.control_plate),
+      snapshots_(out, sc.output.binary_vtu, sc.output.write_facets),
+      cracks_(sim),
+      parts_{&sim, &history_, &snapshots_, &cracks_, &loop_} {
+  if (opt.resume) restore();
+  expected_ = expected_steps(sc, sim, control_);
+  check_spacing_or_start();
+  wall_before_ = loop_.wall_seconds;
+  loop_before_ = loop_.loop_seconds;
+  checkpointed_step_ = opt.resume ? sim.steps() : -1;
+}
+
+void RunLoop::restore() {
+  const io::RestoreReport rep = io::restore_latest_checkpoint(out_, parts_, session_.inputs().hash);
+  for (const auto& line : rep.rejected) fmt::print(stderr, "rcdem: warning: {}\n", line);
+  const std::string writer = fmt::format("rcdem {} ({})", build_version(), build_git_hash());
+  if (rep.header.writer != writer)
+    fmt::print(stderr,
+               "rcdem: warning: {} was written by {}, this is {}: the rest of the run may differ "
+               "from an uninterrupted one\n",
+               rep.file.filename().string(), rep.header.writer, writer);
+  if (!Progress::quiet_default())
+    fmt::print(stderr, "resuming from {} (step {}, t = {:.6g} s)\n", rep.file.string(),
+               rep.header.step, rep.header.time);
+  io::Manifest& manifest = session_.manifest();
+  manifest.session()["resumed_from"] = {{"file", rep.file.filename().string()},
+                                        {"step", rep.header.step},
+                                        {"time_s", rep.header.time}};
+  if (!rep.rejected.empty()) manifest.session()["rejected_checkpoints"] = rep.rejected;
+  manifest.write();
+}
+
+// A resumed run must keep its output spacing; a new one writes its first rows.
+void RunLoop::check_spacing_or_start() {
+  const auto history_every = spacing(expected_, sc_.output.history_rows);
+  const auto snapshot_every = sc_.output.snapshots > 0 ? spacing(expected_, sc_.output.snapshots)
+                                                       : std::numeric_limits<std::int64_t>::max();
+  if (opt_.resume) {
+    if (loop_.history_every != history_every || loop_.snapshot_every != snapshot_every)
+      fail(
+          "checkpoint of '{}': history every {} and snapshots every {} steps, this run would use "
+          "{} and {}: it cannot continue the same run",
+          out_.string(), loop_.history_every, loop_.snapshot_every, history_every, snapshot_every);
+    return;
+  }
+  loop_.history_every = history_every;
+  loop_.snapshot_every = snapshot_every;
+  snapshots_.write(sim_);
+  history_.record(sim_);
+}
+
+// One step and the control's load after it; a failure keeps what the run recorded so far.
+Real RunLoop::step_once() {
   try {
-    std::optional<Simulation> built;
+    sim_.step();
+    const Real load = control_.load();
+    check_finite(sim_, load, control_.displacement());
+    return load;
+  } catch (const Error& e) {
     try {
-      built.emplace(sc, build_specimen(sc));
-    } catch (const Error& e) {
-      rethrow_naming(sc.source.string(), e);
+      history_.write(out_ / "history.csv");
+    } catch (const Error&) {
     }
-    Simulation& sim = *built;
-    // Written only once the set-up has passed every check, so a refused run leaves nothing.
-    if (!opt.resume) {
-      io::write_file_atomically(out / "scenario.toml", sc.text);
-      io::write_particles_vtu(out / "particles_initial.vtu", sim.specimen(), sc.output.binary_vtu);
-    }
-    manifest.write();
-    manifest_started = true;
-    if (opt.on_started) opt.on_started();
-    if (!quiet)
-      fmt::print(stderr,
-                 "time step {:.4g} s (stable estimate {:.4g} s, set by {}; safety {}); {} bodies, "
-                 "{} contacts, {} local points, {} plate contacts\n",
-                 sim.time_step(), sim.stable_time_step(), sim.stable_time_step_limit(),
-                 sc.solver.time_step > 0.0 ? sc.solver.time_step / sim.stable_time_step()
-                                           : sc.solver.dt_safety,
-                 sim.bodies().size(), sim.specimen().contacts.contact_count(),
-                 sim.specimen().contacts.point_count(), sim.plate_contacts().size());
+    rethrow_naming(sc_.source.string(),
+                   Error(fmt::format("{} (history.csv is kept, up to step {})", e.what(),
+                                     history_.rows() ? history_.data().back()[0] : 0.0)));
+  }
+}
 
-    // The test's load and displacement: a control plate's, or a pulled bar's.
-    const Plate* control = sim.find_plate(sc.control_plate);
-    const PulledBar* pulled = sim.find_pulled_bar(sc.control_bar);
-    const auto control_load = [&] {
-      return control ? control->load() : pulled ? pulled->load() : 0.0;
-    };
-    const auto control_displacement = [&] {
-      return control ? control->displacement : pulled ? pulled->displacement : 0.0;
-    };
-    const Real control_speed = control ? std::abs(control->velocity) : pulled ? pulled->speed : 0.0;
-    const Real control_ramp = control ? control->ramp_time : pulled ? pulled->ramp_time : 0.0;
-
-    io::History history(sim, sc.control_plate.empty() ? sc.control_bar : sc.control_plate);
-    io::SnapshotWriter snapshots(out, sc.output.binary_vtu, sc.output.write_facets);
-    io::CrackRecord cracks(sim);
-    io::LoopState loop;
-    const io::CheckpointParts parts{&sim, &history, &snapshots, &cracks, &loop};
-    if (opt.resume) {
-      const io::RestoreReport rep = io::restore_latest_checkpoint(out, parts, inputs.hash);
-      for (const auto& line : rep.rejected) fmt::print(stderr, "rcdem: warning: {}\n", line);
-      const std::string writer = fmt::format("rcdem {} ({})", build_version(), build_git_hash());
-      if (rep.header.writer != writer)
-        fmt::print(stderr,
-                   "rcdem: warning: {} was written by {}, this is {}: the rest of the run may "
-                   "differ from an uninterrupted one\n",
-                   rep.file.filename().string(), rep.header.writer, writer);
-      if (!quiet)
-        fmt::print(stderr, "resuming from {} (step {}, t = {:.6g} s)\n", rep.file.string(),
-                   rep.header.step, rep.header.time);
-      manifest.session()["resumed_from"] = {{"file", rep.file.filename().string()},
-                                            {"step", rep.header.step},
-                                            {"time_s", rep.header.time}};
-      if (!rep.rejected.empty()) manifest.session()["rejected_checkpoints"] = rep.rejected;
-      manifest.write();
-    }
-
-    // How many steps the run will take, where a rule tells: for the history and snapshot
-    // spacing and the progress line.
-    Real expected = std::numeric_limits<Real>::infinity();
-    if (sc.stop.steps > 0) expected = std::min(expected, static_cast<Real>(sc.stop.steps));
-    if (sc.stop.time > 0.0) expected = std::min(expected, sc.stop.time / sim.time_step());
-    if (sc.stop.displacement > 0.0 && control_speed > 0.0)
-      expected = std::min(
-          expected, (sc.stop.displacement / control_speed + 0.5 * control_ramp) / sim.time_step());
-    if (!std::isfinite(expected)) expected = 1e5;  // load_drop only: a guess for the spacing
-    const auto history_every = std::max<std::int64_t>(
-        1, static_cast<std::int64_t>(expected / static_cast<Real>(sc.output.history_rows)));
-    const auto snapshot_every =
-        sc.output.snapshots > 0
-            ? std::max<std::int64_t>(
-                  1, static_cast<std::int64_t>(expected / static_cast<Real>(sc.output.snapshots)))
-            : std::numeric_limits<std::int64_t>::max();
-    if (opt.resume) {
-      if (loop.history_every != history_every || loop.snapshot_every != snapshot_every)
-        fail(
-            "checkpoint of '{}': history every {} and snapshots every {} steps, this run would "
-            "use {} and {}: it cannot continue the same run",
-            out.string(), loop.history_every, loop.snapshot_every, history_every, snapshot_every);
-    } else {
-      loop.history_every = history_every;
-      loop.snapshot_every = snapshot_every;
-      snapshots.write(sim);
-      history.record(sim);
-    }
-    const double wall_before = loop.wall_seconds, loop_before = loop.loop_seconds;
-    const std::int64_t first_step = sim.steps();
-
-    RunSummary r;
-    r.peak_load = loop.peak_load;
-    r.displacement_at_peak = loop.displacement_at_peak;
-    r.kinetic_over_strain_at_peak = loop.kinetic_over_strain_at_peak;
-    Real peak = loop.peak;
-    const bool tty = ::isatty(STDERR_FILENO) != 0;
-    auto last_report = std::chrono::steady_clock::now();
-    const auto loop_start = last_report;
-    auto last_checkpoint = last_report;
-    std::int64_t checkpointed_step = opt.resume ? sim.steps() : -1;
-
-    // A checkpoint of the state after the whole of step n (outputs included), and the manifest.
-    const auto checkpoint = [&](std::chrono::steady_clock::time_point now) {
-      loop.peak = peak;
-      loop.peak_load = r.peak_load;
-      loop.displacement_at_peak = r.displacement_at_peak;
-      loop.kinetic_over_strain_at_peak = r.kinetic_over_strain_at_peak;
-      loop.wall_seconds = wall_before + std::chrono::duration<double>(now - wall_start).count();
-      loop.loop_seconds = loop_before + std::chrono::duration<double>(now - loop_start).count();
-      r.checkpoint = io::write_checkpoint(out, parts, inputs.hash);
-      checkpointed_step = sim.steps();
-      last_checkpoint = std::chrono::steady_clock::now();
-      auto& j = manifest.json();
-      j["steps"] = sim.steps();
-      j["time_s"] = sim.time();
-      j["wall_seconds"] = loop.wall_seconds;
-      j["last_checkpoint"] = {{"file", r.checkpoint.filename().string()},
-                              {"step", sim.steps()},
-                              {"time_s", sim.time()},
-                              {"written", iso_now()}};
-      manifest.session()["steps_at_last_checkpoint"] = sim.steps();
-      manifest.write();
-    };
-    // Output failures (disk full, directory gone) say where the run can continue from.
-    const auto with_resume_hint = [&](const Error& e) {
-      if (!checkpoints || checkpointed_step < 0) return Error(e.what());
-      return Error(fmt::format(
-          "{} (at step {}; the checkpoint of step {} is intact: when the problem is fixed, "
-          "continue with: rcdem run --resume {})",
-          e.what(), sim.steps(), checkpointed_step, out.string()));
-    };
-
-    signals.loop();
-    for (;;) {
-      Real load = 0.0;
-      try {
-        sim.step();
-        load = control_load();
-        check_finite(sim, load, control_displacement());
-      } catch (const Error& e) {
-        // What the run recorded up to the failure is kept for the diagnosis.
-        try {
-          history.write(out / "history.csv");
-        } catch (const Error&) {
-        }
-        rethrow_naming(sc.source.string(),
-                       Error(fmt::format("{} (history.csv is kept, up to step {})", e.what(),
-                                         history.rows() ? history.data().back()[0] : 0.0)));
-      }
-      if (on_step) on_step(sim);
-      if (load > peak) {
-        peak = load;
-        r.peak_load = load;
-        r.displacement_at_peak = control_displacement();
-        // The strain energy from the balance of SPEC 11 (W = E_s + E_k + D, kept within 1e-4):
-        // summing it over a million local points at every new peak would cost a step's time.
-        const Energy& e = sim.ledger();
-        const Real strain = e.external_work - e.kinetic - e.dissipated();
-        r.kinetic_over_strain_at_peak = strain > 0.0 ? e.kinetic / strain : 0.0;
-      }
-      const std::int64_t n = sim.steps();
-      if (n % history_every == 0) {
-        history.record(sim);
-        cracks.update(sim, control_displacement(), load);
-      }
-      if (n % snapshot_every == 0) {
-        try {
-          snapshots.write(sim);
-          history.write(out / "history.csv");
-        } catch (const Error& e) {
-          throw with_resume_hint(e);
-        }
-      }
-      // Stop rules.
-      if (sc.stop.steps > 0 && n >= sc.stop.steps) r.stop_reason = "steps";
-      if (sc.stop.time > 0.0 && sim.time() >= sc.stop.time) r.stop_reason = "time";
-      if (sc.stop.displacement > 0.0 && std::abs(control_displacement()) >= sc.stop.displacement)
-        r.stop_reason = "displacement";
-      // After the peak: the load has fallen below the fraction, and the peak is a real one (the
-      // specimen has cracked: some local point is fully broken).
-      if (sc.stop.load_drop > 0.0 && peak > 0.0 && load < sc.stop.load_drop * peak &&
-          sim.ledger().damage > 0.0)
-        r.stop_reason = "load_drop";
-      // Peak plus a defined post-peak (issue 5): the plate has gone this far past the peak's
-      // position, again only once the specimen has cracked.
-      if (sc.stop.post_peak_displacement > 0.0 && peak > 0.0 &&
-          std::abs(control_displacement()) - std::abs(r.displacement_at_peak) >=
-              sc.stop.post_peak_displacement &&
-          sim.ledger().damage > 0.0)
-        r.stop_reason = "post_peak_displacement";
-      const auto now = std::chrono::steady_clock::now();
-      if (!quiet && std::chrono::duration<double>(now - last_report).count() > (tty ? 0.5 : 10.0)) {
-        last_report = now;
-        const double elapsed = std::chrono::duration<double>(now - loop_start).count();
-        const double rate = static_cast<double>(n - first_step) / elapsed;
-        const double frac = std::min(1.0, static_cast<double>(n) / expected);
-        fmt::print(stderr,
-                   "{}step {} ({:.1f}%)  {:.0f} steps/s  ETA {:.0f} s  load {:.4g} N  peak "
-                   "{:.4g} N{}",
-                   tty ? "\r" : "", n, 100.0 * frac, rate,
-                   rate > 0 ? std::max(0.0, expected - static_cast<double>(n)) / rate : 0.0, load,
-                   peak, tty ? "   " : "\n");
-        std::fflush(stderr);
-      }
-      if (!r.stop_reason.empty()) break;
-      const bool due = (opt.checkpoint_every_steps > 0 && n % opt.checkpoint_every_steps == 0) ||
-                       (opt.checkpoint_every_seconds > 0.0 &&
-                        std::chrono::duration<double>(now - last_checkpoint).count() >=
-                            opt.checkpoint_every_seconds);
-      if (due) {
-        try {
-          checkpoint(now);
-        } catch (const Error& e) {
-          throw with_resume_hint(e);
-        }
-      }
-      if (pending_stop_signal() != 0) {
-        // Interrupted: the state after this whole step is saved, with what the run has so far.
-        const int sig = pending_stop_signal();
-        try {
-          if (checkpointed_step != n) checkpoint(now);
-          history.write(out / "history.csv");
-          cracks.write(out / "broken_points.csv");
-        } catch (const Error& e) {
-          throw with_resume_hint(e);
-        }
-        auto& j = manifest.json();
-        j["exit_state"] = "interrupted";
-        j["end_time"] = iso_now();
-        manifest.session()["exit_state"] = "interrupted";
-        manifest.session()["signal"] = signal_name(sig);
-        manifest.session()["end_time"] = j["end_time"];
-        manifest.session()["wall_seconds"] =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-        manifest.write_quietly();
-        if (!quiet && tty) fmt::print(stderr, "\n");
-        fmt::print(stderr,
-                   "rcdem: interrupted by {} at step {} (t = {:.6g} s); checkpoint {} written; "
-                   "resume with: rcdem run --resume {}\n",
-                   signal_name(sig), n, sim.time(), r.checkpoint.filename().string(), out.string());
-        r.stop_reason = "interrupted";
-        r.signal = sig;
-        r.steps = n;
-        r.time = sim.time();
-        r.energy = sim.energy();
-        return r;
-      }
-    }
-    if (!quiet && tty) fmt::print(stderr, "\n");
-    if (history.rows() == 0 || history.data().back()[0] != static_cast<double>(sim.steps()))
-      history.record(sim);
-    cracks.update(sim, control_displacement(), control_load());
+bool RunLoop::run(const std::function<void(const Simulation&)>& on_step) {
+  PeakTracker peak(loop_);
+  std::vector<RunObserver*> observers{&peak};
+  HistoryRecorder rows(Trigger::every(loop_.history_every), history_, cracks_);
+  SnapshotRecorder snapshots(Trigger::every(loop_.snapshot_every), snapshots_, history_, out_);
+  observers.push_back(&rows);
+  observers.push_back(&snapshots);
+  ProgressLine progress(expected_, peak);
+  const auto rules = stop_rules(sc_, peak);
+  loop_start_ = last_checkpoint_ = std::chrono::steady_clock::now();
+  session_.signals().loop();
+  for (;;) {
+    const Real load = step_once();
+    if (on_step) on_step(sim_);
+    const StepView view{sim_, sim_.steps(), load, control_.displacement()};
     try {
-      snapshots.write(sim);
-      history.write(out / "history.csv");
-      cracks.write(out / "broken_points.csv");
+      for (RunObserver* o : observers)
+        if (o->trigger()(view.step)) o->act(view);
     } catch (const Error& e) {
       throw with_resume_hint(e);
     }
-
-    r.steps = sim.steps();
-    r.time = sim.time();
-    r.energy = sim.energy();
-    const auto end = std::chrono::steady_clock::now();
-    const double wall = wall_before + std::chrono::duration<double>(end - wall_start).count();
-    auto& j = r.json;
-    j["scenario"] = sc.source.string();
-    j["stop_reason"] = r.stop_reason;
-    j["steps"] = r.steps;
-    j["time_s"] = r.time;
-    j["time_step_s"] = sim.time_step();
-    j["stable_time_step_s"] = sim.stable_time_step();
-    j["stable_time_step_set_by"] = sim.stable_time_step_limit();
-    const MassScalingPlan& ms = sim.mass_scaling();
-    j["selective_mass_scaling"] = {{"added_mass_limit", sc.solver.added_mass_limit},
-                                   {"bodies_scaled", ms.bodies_scaled},
-                                   {"largest_factor", ms.largest_factor},
-                                   {"added_mass_fraction", ms.added_fraction()},
-                                   {"unscaled_stable_time_step_s", ms.unscaled_step}};
-    j["control"] = sc.control_plate.empty() ? sc.control_bar : sc.control_plate;
-    j["peak_load_N"] = r.peak_load;
-    j["displacement_at_peak_m"] = r.displacement_at_peak;
-    j["kinetic_over_strain_at_peak"] = r.kinetic_over_strain_at_peak;
-    const Energy& e = r.energy;
-    j["energy"] = {{"external_work_J", e.external_work},
-                   {"strain_J", e.strain},
-                   {"kinetic_J", e.kinetic},
-                   {"dissipated_damage_J", e.damage},
-                   {"dissipated_friction_J", e.friction},
-                   {"dissipated_damping_J", e.damping},
-                   {"dissipated_plastic_J", e.plastic},
-                   {"balance_error", e.balance_error()}};
-    j["damaged_points"] = sim.damaged_points();
-    j["broken_points"] = sim.broken_points();
-    j["first_cracking"] = cracks.first_cracking();
-    j["local_points"] = sim.specimen().contacts.point_count();
-    j["specimen"] = io::specimen_summary(sc, sim.specimen());
-    j["gauges"] = history.gauges().summary();
-    RunOutcome outcome;
-    set_expectation(sc, outcome);
-    outcome.peak_load = r.peak_load;
-    outcome.control_travel = std::abs(control_displacement());
-    outcome.balance_error = e.balance_error();
-    j["warnings"] = suspicious_run_warnings(outcome);
-    for (const auto& w : j["warnings"])
-      fmt::print(stderr, "rcdem: warning: {}\n", w.get<std::string>());
-    // Wall-clock figures cover every session up to the state each handed on (a resumed run:
-    // up to its checkpoint), so they may differ between otherwise identical runs.
-    const double loop_s = loop_before + std::chrono::duration<double>(end - loop_start).count();
-    j["loop_seconds"] = loop_s;
-    j["steps_per_second"] = loop_s > 0.0 ? static_cast<double>(r.steps) / loop_s : 0.0;
-    j["seconds"] = wall;
-    j["rcdem"] = {{"version", build_version()},
-                  {"git_hash", build_git_hash()},
-                  {"build", build_flavour()},
-                  {"simd", simd_level_name(simd_level())}};
-    io::write_file_atomically(out / "summary.json", j.dump(2) + "\n");
-    io::run_plot_tool("plot_history.py", out);  // load_displacement.png
-    r.history_columns = history.columns();
-    r.history_rows = history.data();
-    {
-      auto& m = manifest.json();
-      m["exit_state"] = "finished";
-      m["stop_reason"] = r.stop_reason;
-      m["end_time"] = iso_now();
-      m["steps"] = r.steps;
-      m["time_s"] = r.time;
-      m["wall_seconds"] = wall;
-      manifest.session()["exit_state"] = "finished";
-      manifest.session()["end_time"] = m["end_time"];
-      manifest.session()["wall_seconds"] = std::chrono::duration<double>(end - wall_start).count();
-      if (checkpoints && !opt.keep_checkpoints) {
-        io::remove_checkpoints(out);
-        m["last_checkpoint"] = nullptr;
-      }
-      manifest.write_quietly();
+    for (const auto& rule : rules)
+      if (rule->triggered(view)) stop_reason_ = rule->reason();
+    if (progress.trigger()(view.step)) progress.act(view);
+    if (!stop_reason_.empty()) break;
+    const auto now = std::chrono::steady_clock::now();
+    if (checkpoint_due(view.step, now)) checkpoint(now);
+    if ((signal_ = pending_stop_signal()) != 0) {
+      // Interrupted: the state after this whole step is saved, with what the run has so far.
+      if (checkpointed_step_ != view.step) checkpoint(now);
+      progress.close();
+      return false;
     }
-    if (!quiet)
-      fmt::print(stderr,
-                 "stopped by {} after {} steps (t = {:.4g} s); peak load {:.6g} N at {:.4g} m; "
-                 "energy balance: external work {:.6g} J = strain {:.6g} + kinetic {:.4g} + "
-                 "dissipated {:.6g} J (error {:.3f}%)\n",
-                 r.stop_reason, r.steps, r.time, r.peak_load, r.displacement_at_peak,
-                 e.external_work, e.strain, e.kinetic, e.dissipated(), 100.0 * e.balance_error());
-    return r;
+  }
+  progress.close();
+  return true;
+}
+
+bool RunLoop::checkpoint_due(std::int64_t n, std::chrono::steady_clock::time_point now) const {
+  return (opt_.checkpoint_every_steps > 0 && n % opt_.checkpoint_every_steps == 0) ||
+         (opt_.checkpoint_every_seconds > 0.0 &&
+          std::chrono::duration<double>(now - last_checkpoint_).count() >=
+              opt_.checkpoint_every_seconds);
+}
+
+// A checkpoint of the state after the whole of the last step (outputs included), and the manifest.
+void RunLoop::checkpoint(std::chrono::steady_clock::time_point now) {
+  try {
+    loop_.wall_seconds =
+        wall_before_ + std::chrono::duration<double>(now - session_.wall_start()).count();
+    loop_.loop_seconds = loop_before_ + std::chrono::duration<double>(now - loop_start_).count();
+    last_checkpoint_file_ = io::write_checkpoint(out_, parts_, session_.inputs().hash);
+    checkpointed_step_ = sim_.steps();
+    last_checkpoint_ = std::chrono::steady_clock::now();
+    io::Manifest& manifest = session_.manifest();
+    auto& j = manifest.json();
+    j["steps"] = sim_.steps();
+    j["time_s"] = sim_.time();
+    j["wall_seconds"] = loop_.wall_seconds;
+    j["last_checkpoint"] = {{"file", last_checkpoint_file_.filename().string()},
+                            {"step", sim_.steps()},
+                            {"time_s", sim_.time()},
+                            {"written", iso_now()}};
+    manifest.session()["steps_at_last_checkpoint"] = sim_.steps();
+    manifest.write();
   } catch (const Error& e) {
-    record_failure(e.what());
+    throw with_resume_hint(e);
+  }
+}
+
+// Output failures (disk full, directory gone) say where the run can continue from.
+Error RunLoop::with_resume_hint(const Error& e) const {
+  if (!session_.checkpoints() || checkpointed_step_ < 0) return Error(e.what());
+  return Error(fmt::format(
+      "{} (at step {}; the checkpoint of step {} is intact: when the problem is fixed, continue "
+      "with: rcdem run --resume {})",
+      e.what(), sim_.steps(), checkpointed_step_, out_.string()));
+}
+
+RunSummary RunLoop::partial_summary() const {
+  RunSummary r;
+  r.stop_reason = stop_reason_;
+  r.peak_load = loop_.peak_load;
+  r.displacement_at_peak = loop_.displacement_at_peak;
+  r.kinetic_over_strain_at_peak = loop_.kinetic_over_strain_at_peak;
+  r.steps = sim_.steps();
+  r.time = sim_.time();
+  r.energy = sim_.energy();
+  r.checkpoint = last_checkpoint_file_;
+  return r;
+}
+
+RunSummary RunLoop::interrupted() {
+  try {
+    history_.write(out_ / "history.csv");
+    cracks_.write(out_ / "broken_points.csv");
+  } catch (const Error& e) {
+    throw with_resume_hint(e);
+  }
+  io::Manifest& manifest = session_.manifest();
+  auto& j = manifest.json();
+  j["exit_state"] = "interrupted";
+  j["end_time"] = iso_now();
+  manifest.session()["exit_state"] = "interrupted";
+  manifest.session()["signal"] = signal_name(signal_);
+  manifest.session()["end_time"] = j["end_time"];
+  manifest.session()["wall_seconds"] =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - session_.wall_start())
+          .count();
+  manifest.write_quietly();
+  fmt::print(stderr,
+             "rcdem: interrupted by {} at step {} (t = {:.6g} s); checkpoint {} written; resume "
+             "with: rcdem run --resume {}\n",
+             signal_name(signal_), sim_.steps(), sim_.time(),
+             last_checkpoint_file_.filename().string(), out_.string());
+  RunSummary r = partial_summary();
+  r.stop_reason = "interrupted";
+  r.signal = signal_;
+  return r;
+}
+
+void RunLoop::write_final_outputs() {
+  if (history_.rows() == 0 || history_.data().back()[0] != static_cast<double>(sim_.steps()))
+    history_.record(sim_);
+  cracks_.update(sim_, control_.displacement(), control_.load());
+  try {
+    snapshots_.write(sim_);
+    history_.write(out_ / "history.csv");
+    cracks_.write(out_ / "broken_points.csv");
+  } catch (const Error& e) {
+    throw with_resume_hint(e);
+  }
+}
+
+nlohmann::ordered_json RunLoop::summary_json(const RunSummary& r, double wall, double loop_s) {
+  nlohmann::ordered_json j;
+  j["scenario"] = sc_.source.string();
+  j["stop_reason"] = r.stop_reason;
+  j["steps"] = r.steps;
+  j["time_s"] = r.time;
+  j["time_step_s"] = sim_.time_step();
+  j["stable_time_step_s"] = sim_.stable_time_step();
+  j["stable_time_step_set_by"] = sim_.stable_time_step_limit();
+  const MassScalingPlan& ms = sim_.mass_scaling();
+  j["selective_mass_scaling"] = {{"added_mass_limit", sc_.solver.added_mass_limit},
+                                 {"bodies_scaled", ms.bodies_scaled},
+                                 {"largest_factor", ms.largest_factor},
+                                 {"added_mass_fraction", ms.added_fraction()},
+                                 {"unscaled_stable_time_step_s", ms.unscaled_step}};
+  j["control"] = sc_.control_plate.empty() ? sc_.control_bar : sc_.control_plate;
+  j["peak_load_N"] = r.peak_load;
+  j["displacement_at_peak_m"] = r.displacement_at_peak;
+  j["kinetic_over_strain_at_peak"] = r.kinetic_over_strain_at_peak;
+  const Energy& e = r.energy;
+  j["energy"] = {{"external_work_J", e.external_work},
+                 {"strain_J", e.strain},
+                 {"kinetic_J", e.kinetic},
+                 {"dissipated_damage_J", e.damage},
+                 {"dissipated_friction_J", e.friction},
+                 {"dissipated_damping_J", e.damping},
+                 {"dissipated_plastic_J", e.plastic},
+                 {"balance_error", e.balance_error()}};
+  j["damaged_points"] = sim_.damaged_points();
+  j["broken_points"] = sim_.broken_points();
+  j["first_cracking"] = cracks_.first_cracking();
+  j["local_points"] = sim_.specimen().contacts.point_count();
+  j["specimen"] = io::specimen_summary(sc_, sim_.specimen());
+  j["gauges"] = history_.gauges().summary();
+  RunOutcome outcome;
+  set_expectation(sc_, outcome);
+  outcome.peak_load = r.peak_load;
+  outcome.control_travel = std::abs(control_.displacement());
+  outcome.balance_error = e.balance_error();
+  j["warnings"] = suspicious_run_warnings(outcome);
+  for (const auto& w : j["warnings"])
+    fmt::print(stderr, "rcdem: warning: {}\n", w.get<std::string>());
+  // Wall-clock figures cover every session up to the state each handed on (a resumed run: up to
+  // its checkpoint), so they may differ between otherwise identical runs.
+  j["loop_seconds"] = loop_s;
+  j["steps_per_second"] = loop_s > 0.0 ? static_cast<double>(r.steps) / loop_s : 0.0;
+  j["seconds"] = wall;
+  j["rcdem"] = {{"version", build_version()},
+                {"git_hash", build_git_hash()},
+                {"build", build_flavour()},
+                {"simd", simd_level_name(simd_level())}};
+  return j;
+}
+
+void RunLoop::finish_manifest(const RunSummary& r, double wall,
+                              std::chrono::steady_clock::time_point end) {
+  io::Manifest& manifest = session_.manifest();
+  auto& m = manifest.json();
+  m["exit_state"] = "finished";
+  m["stop_reason"] = r.stop_reason;
+  m["end_time"] = iso_now();
+  m["steps"] = r.steps;
+  m["time_s"] = r.time;
+  m["wall_seconds"] = wall;
+  manifest.session()["exit_state"] = "finished";
+  manifest.session()["end_time"] = m["end_time"];
+  manifest.session()["wall_seconds"] =
+      std::chrono::duration<double>(end - session_.wall_start()).count();
+  if (session_.checkpoints() && !opt_.keep_checkpoints) {
+    io::remove_checkpoints(out_);
+    m["last_checkpoint"] = nullptr;
+  }
+  manifest.write_quietly();
+}
+
+RunSummary RunLoop::finish() {
+  write_final_outputs();
+  RunSummary r = partial_summary();
+  const auto end = std::chrono::steady_clock::now();
+  const double wall =
+      wall_before_ + std::chrono::duration<double>(end - session_.wall_start()).count();
+  const double loop_s = loop_before_ + std::chrono::duration<double>(end - loop_start_).count();
+  r.json = summary_json(r, wall, loop_s);
+  io::write_file_atomically(out_ / "summary.json", r.json.dump(2) + "\n");
+  io::run_plot_tool("plot_history.py", out_);  // load_displacement.png
+  r.history_columns = history_.columns();
+  r.history_rows = history_.data();
+  finish_manifest(r, wall, end);
+  if (!Progress::quiet_default()) {
+    const Energy& e = r.energy;
+    fmt::print(stderr,
+               "stopped by {} after {} steps (t = {:.4g} s); peak load {:.6g} N at {:.4g} m; "
+               "energy balance: external work {:.6g} J = strain {:.6g} + kinetic {:.4g} + "
+               "dissipated {:.6g} J (error {:.3f}%)\n",
+               r.stop_reason, r.steps, r.time, r.peak_load, r.displacement_at_peak, e.external_work,
+               e.strain, e.kinetic, e.dissipated(), 100.0 * e.balance_error());
+  }
+  return r;
+}
+
+// The specimen and its solver, the set-up's failures named after the scenario; the first files
+// are written only once the set-up has passed every check, so a refused run leaves nothing.
+void build(const Scenario& sc, const fs::path& out, const RunOptions& opt, RunSession& session,
+           std::optional<Simulation>& sim) {
+  try {
+    sim.emplace(sc, build_specimen(sc));
+  } catch (const Error& e) {
+    rethrow_naming(sc.source.string(), e);
+  }
+  if (!opt.resume) {
+    io::write_file_atomically(out / "scenario.toml", sc.text);
+    io::write_particles_vtu(out / "particles_initial.vtu", sim->specimen(), sc.output.binary_vtu);
+  }
+  session.started();
+  if (opt.on_started) opt.on_started();
+  if (!Progress::quiet_default()) print_set_up(sc, *sim);
+}
+
+}  // namespace
+
+RunSummary run_scenario(const Scenario& sc, const fs::path& out, const RunOptions& opt,
+                        const std::function<void(const Simulation&)>& on_step) {
+  validate_run(sc);
+  RunSession session(sc, out, opt);
+  try {
+    std::optional<Simulation> sim;
+    build(sc, out, opt, session, sim);
+    RunLoop loop(sc, out, opt, session, *sim);
+    return loop.run(on_step) ? loop.finish() : loop.interrupted();
+  } catch (const Error& e) {
+    session.record_failure(e.what());
     throw;
   } catch (const std::exception& e) {
-    record_failure(std::string("internal error: ") + e.what());
+    session.record_failure(std::string("internal error: ") + e.what());
     throw;
   }
 }
