@@ -55,15 +55,16 @@ def search(d):
     c = load(d)
     print(f"Search on the {1e3 * c['cube_size_m']:.0f} mm cube, seed {c['seed']}, tolerance "
           f"{100 * c['tolerance']:.0f}%: {'converged' if c['converged'] else 'not converged'}; "
-          f"chosen iteration {c.get('chosen_iteration')}.")
+          f"chosen iteration {c.get('chosen_iteration')}; tension lever "
+          f"{c.get('tension_lever', 'sigma_nt')}.")
     print()
-    print("| iteration | Ē (GPa) | α | σ_n,t (MPa) | τ (MPa) | E (GPa) | ν | σc (MPa) | σt (MPa) | "
-          "worst misfit |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+    print("| iteration | Ē (GPa) | α | σ_n,t (MPa) | τ (MPa) | G_f,n (J/m²) | E (GPa) | ν | σc (MPa) | "
+          "σt (MPa) | worst misfit |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     for i, it in enumerate(c["iterations"]):
         p, m = it["parameters"], it["measured"]
         print(f"| {i} | {p['E_bar'] / 1e9:.2f} | {p['alpha']:.4f} | {p['sigma_nt'] / 1e6:.3f} | "
-              f"{p['tau'] / 1e6:.2f} | {m['E'] / 1e9:.2f} | {m['nu']:.4f} | {m['sigma_c'] / 1e6:.2f} | "
+              f"{p['tau'] / 1e6:.2f} | {p['G_fn']:.3f} | {m['E'] / 1e9:.2f} | {m['nu']:.4f} | {m['sigma_c'] / 1e6:.2f} | "
               f"{m['sigma_t'] / 1e6:.3f} | {100 * it['worst_misfit']:.1f}% |")
 
 
