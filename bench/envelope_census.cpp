@@ -10,10 +10,10 @@
 #include <string>
 #include <vector>
 
+#include "rcdem/config/scenario.hpp"
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
 #include "rcdem/run/checkpoint.hpp"
-#include "rcdem/config/scenario.hpp"
 #include "rcdem/solver/simulation.hpp"
 #include "rcdem/specimens/specimen.hpp"
 

@@ -10,9 +10,9 @@
 #include <numbers>
 #include <string>
 
+#include "rcdem/config/scenario.hpp"
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
-#include "rcdem/config/scenario.hpp"
 #include "rcdem/specimens/specimen.hpp"
 
 int main(int argc, char** argv) {

@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
+#include "rcdem/config/scenario.hpp"
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
-#include "rcdem/config/scenario.hpp"
 #include "rcdem/solver/selective_mass_scaling.hpp"
 #include "rcdem/solver/simulation.hpp"
 #include "rcdem/specimens/specimen.hpp"

@@ -31,10 +31,10 @@
 #include <omp.h>
 #endif
 
+#include "rcdem/config/scenario.hpp"
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
 #include "rcdem/run/checkpoint.hpp"
-#include "rcdem/config/scenario.hpp"
 #include "rcdem/solver/simulation.hpp"
 #include "rcdem/specimens/specimen.hpp"
 

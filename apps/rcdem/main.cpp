@@ -15,15 +15,15 @@
 #include <thread>
 
 #include "rcdem/calibration/calibrate.hpp"
+#include "rcdem/config/scenario.hpp"
+#include "rcdem/config/schema.hpp"
 #include "rcdem/core/build_info.hpp"
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
 #include "rcdem/io/atomic_file.hpp"
-#include "rcdem/run/run_directory.hpp"
-#include "rcdem/config/scenario.hpp"
-#include "rcdem/config/schema.hpp"
 #include "rcdem/io/specimen_output.hpp"
 #include "rcdem/run/run.hpp"
+#include "rcdem/run/run_directory.hpp"
 #include "rcdem/specimens/specimen.hpp"
 #include "rcdem/study/study.hpp"
 

@@ -18,11 +18,11 @@
 #include <omp.h>
 #endif
 
+#include "rcdem/config/scenario.hpp"
 #include "rcdem/core/error.hpp"
 #include "rcdem/run/checkpoint.hpp"
 #include "rcdem/run/crack_record.hpp"
 #include "rcdem/run/run_output.hpp"
-#include "rcdem/config/scenario.hpp"
 #include "rcdem/solver/simulation.hpp"
 #include "rcdem/specimens/specimen.hpp"
 

@@ -6,9 +6,9 @@
 #include <fstream>
 #include <string>
 
+#include "rcdem/config/scenario.hpp"
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
-#include "rcdem/config/scenario.hpp"
 #include "rcdem/run/run.hpp"
 
 namespace rcdem {

@@ -2,9 +2,9 @@
 
 #include <sstream>
 
-#include "rcdem/core/error.hpp"
 #include "rcdem/config/scenario.hpp"
 #include "rcdem/config/schema.hpp"
+#include "rcdem/core/error.hpp"
 #include "small_scenarios.hpp"
 
 using namespace rcdem;

@@ -6,9 +6,9 @@
 #include <fstream>
 #include <string>
 
-#include "rcdem/core/error.hpp"
 #include "rcdem/config/scenario.hpp"
 #include "rcdem/config/scenario_text.hpp"
+#include "rcdem/core/error.hpp"
 
 namespace rcdem::config {
 namespace {

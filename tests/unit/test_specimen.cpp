@@ -10,9 +10,9 @@
 #include <omp.h>
 #endif
 
+#include "rcdem/config/specimen_registry.hpp"
 #include "rcdem/contact/local_point_properties.hpp"
 #include "rcdem/specimens/specimen.hpp"
-#include "rcdem/config/specimen_registry.hpp"
 #include "rcdem/tessellation/cell_complex.hpp"
 #include "small_scenarios.hpp"
 

@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "rcdem/config/scenario.hpp"
 #include "rcdem/contact/contact_loop.hpp"
 #include "rcdem/contact/contact_state.hpp"
 #include "rcdem/contact/laws/elastic.hpp"
-#include "rcdem/config/scenario.hpp"
 #include "rcdem/solver/plates.hpp"
 #include "rcdem/state/bodies.hpp"
 #include "rcdem/state/contact_network.hpp"

@@ -12,11 +12,11 @@
 #include <limits>
 #include <vector>
 
+#include "rcdem/config/scenario.hpp"
 #include "rcdem/contact/contact_loop.hpp"
 #include "rcdem/contact/elastic_condensation.hpp"
 #include "rcdem/contact/laws/bilinear_softening.hpp"
 #include "rcdem/core/rng.hpp"
-#include "rcdem/config/scenario.hpp"
 #include "rcdem/solver/simulation.hpp"
 #include "rcdem/specimens/specimen.hpp"
 

@@ -18,11 +18,11 @@
 #include <string>
 #include <vector>
 
+#include "rcdem/config/scenario.hpp"
 #include "rcdem/contact/contact_loop.hpp"
 #include "rcdem/contact/contact_state.hpp"
 #include "rcdem/contact/laws/elastic.hpp"
 #include "rcdem/contact/local_point_properties.hpp"
-#include "rcdem/config/scenario.hpp"
 #include "rcdem/io/specimen_output.hpp"
 #include "rcdem/reinforcement/rigid_cylinder.hpp"
 #include "rcdem/specimens/specimen.hpp"

@@ -16,13 +16,13 @@
 #include <cmath>
 #include <vector>
 
+#include "rcdem/config/scenario.hpp"
 #include "rcdem/contact/contact_loop.hpp"
 #include "rcdem/contact/contact_state.hpp"
 #include "rcdem/contact/laws/bilinear_softening.hpp"
 #include "rcdem/contact/laws/elastic.hpp"
 #include "rcdem/contact/local_point_properties.hpp"
 #include "rcdem/core/error.hpp"
-#include "rcdem/config/scenario.hpp"
 #include "rcdem/solver/simulation.hpp"
 #include "rcdem/specimens/specimen.hpp"
 #include "rcdem/state/bodies.hpp"

@@ -14,12 +14,12 @@
 #include <string>
 #include <vector>
 
+#include "rcdem/config/scenario.hpp"
 #include "rcdem/contact/contact_loop.hpp"
 #include "rcdem/contact/contact_state.hpp"
 #include "rcdem/contact/laws/elastic.hpp"
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/rng.hpp"
-#include "rcdem/config/scenario.hpp"
 #include "rcdem/solver/plates.hpp"
 #include "rcdem/solver/simulation.hpp"
 #include "rcdem/specimens/specimen.hpp"

@@ -18,9 +18,9 @@
 #include <vector>
 
 #include "dynamics_checks.hpp"
+#include "rcdem/config/scenario.hpp"
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/rng.hpp"
-#include "rcdem/config/scenario.hpp"
 #include "rcdem/solver/body_stiffness.hpp"
 #include "rcdem/solver/selective_mass_scaling.hpp"
 #include "rcdem/solver/simulation.hpp"

@@ -7,8 +7,8 @@
 #include <utility>
 #include <vector>
 
-#include "rcdem/core/types.hpp"
 #include "rcdem/config/schema.hpp"
+#include "rcdem/core/types.hpp"
 
 namespace rcdem {
 

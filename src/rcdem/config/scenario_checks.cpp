@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "rcdem/core/error.hpp"
 #include "rcdem/config/specimen_geometry.hpp"
 #include "rcdem/config/specimen_registry.hpp"
+#include "rcdem/core/error.hpp"
 
 namespace rcdem::config {
 

@@ -1,7 +1,7 @@
 #include "rcdem/config/specimen_registry.hpp"
 
-#include "rcdem/core/error.hpp"
 #include "rcdem/config/scenario.hpp"
+#include "rcdem/core/error.hpp"
 
 namespace rcdem {
 

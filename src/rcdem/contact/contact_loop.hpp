@@ -27,11 +27,10 @@ struct PointSums {
 // One local point of a contact, in the contact's frame (see evaluate_contacts): advances its
 // history by the law and returns what it adds to the contact's sums. A point is read from and
 // written to its record (local_point_records.hpp). BL's branches keep the loop over a contact's
-// points scalar, and that is the faster form: a branch-free elastic pass in SIMD lanes (4 or 8)
-// with a scalar pass for the points that leave the elastic range was 7-9% slower (bench/RESULTS.md,
-// session 5), as was a full 8-lane pass with idle lanes masked for EL (6%), and in session 13 the
-// law written with selects in one 8- or 4-lane vector per contact (13-17%): every lane then pays
-// both divisions and both roots.
+// points scalar, and that is the faster form: a branch-free elastic pass in SIMD lanes with a
+// scalar pass for the points that leave the elastic range, a full 8-lane pass with idle lanes
+// masked, and the law written with selects in one vector per contact were all slower
+// (bench/RESULTS.md): every lane then pays both divisions and both roots.
 template <typename Law>
 struct PointUpdate {
   const Law& law;
@@ -96,7 +95,7 @@ struct ContactInputs {
     const Vec3 d = anchor - in.x[a];
     return (d - d.dot(axis) * axis).normalized();
   }
-  // Eigen's normalized() of this expression was not inlined: a call per contact, 15% of the step.
+  // Eigen's normalized() of this expression was not inlined: a call per contact, in the hot loop.
   const Vec3 d = in.x[b] - in.x[a];
   return d / std::sqrt(d.squaredNorm());  // the same rounding as normalized()
 }
@@ -105,8 +104,7 @@ struct ContactInputs {
 // blocked loop forms them for all the contacts of a block that visit their points before it visits
 // any point, so that the out-of-order core overlaps the contacts' chains of dependent operations
 // (normal, frame turn, products) instead of waiting on each between two contacts' ~100
-// instructions per point: +3.3% steps/s on the cracked AN4 beam, 9 rounds of 10 (bench/RESULTS.md,
-// session 13).
+// instructions per point (measured in bench/RESULTS.md).
 struct ContactFrame {
   Vec3 n, t1, t2;
   Vec3 xa0;              // A's centre at t = 0
@@ -167,8 +165,8 @@ template <int kWrite, typename T>
 
 // Contact c's points' records, requested while the block forms its frames: the damaged contacts
 // of a block lie scattered among condensed ones, so no hardware prefetcher follows them, and the
-// first touch of each one's points was the point path's largest cost (bench/RESULTS.md, session
-// 11). For writing: every visit writes the records' second lines.
+// first touch of each one's points is the point path's largest cost (bench/RESULTS.md). For
+// writing: every visit writes the records' second lines.
 [[gnu::always_inline]] inline void prefetch_points(const ContactNetwork& net,
                                                    const LocalPointRecords& records, Index c) {
   prefetch_elements<1>(records.data(), net.point_begin[c], net.point_begin[c + 1]);

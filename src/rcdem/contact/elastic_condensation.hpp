@@ -21,9 +21,8 @@
 // elastic limit of its points (fn_max / kn, c_max / ks); the second is tested through
 // 2 (|u_c - u_cn n|^2 + e^2), a little more cautious and free of square roots. D being a
 // difference of two rotations, |D|_2^2 = |D|_F^2 / 2 exactly (its singular values are
-// 2 sin(phi / 2) twice and 0): no root or eigenvalue is needed. (Until session 15 the bound took
-// |D|_F, sqrt 2 looser: in the cracked AN4 beam 5,600 intact contacts a step failed it, 99.8% of
-// them with every point inside; with |D|_2 3,200 of them stay condensed.) Points
+// 2 sin(phi / 2) twice and 0): no root or eigenvalue is needed. (|D|_F, sqrt 2 looser, sends
+// intact contacts whose every point is inside back to the point loop.) Points
 // that would come near a limit send the contact back to the point loop, which finds exactly what it
 // would have found had it visited the points every step (the limits are not crossed in between, and
 // an intact point's forces do not depend on its stored history). A condensed contact's point
@@ -98,7 +97,8 @@ struct CondensedInputs {
 // its sums: with u = u_c + D rho over the points and sum kn rho = 0,
 //   E = ((1 - alpha) (K u_cn^2 + n^T D J D^T n) + alpha (K |u_c|^2 + tr(D J D^T))) / 2,
 // the points' own energy to rounding, without bringing their histories up to date (a history row
-// asks for the strain energy every ~50 steps; the catch-up it took cost ~5x a condensed step).
+// asks for the strain energy every few dozen steps; catching the histories up costs several
+// condensed steps).
 Real condensed_strain_energy(const CondensedSums& sums, Index c, const Vec3& xa, const Vec3& xb,
                              const Eigen::Matrix3d& ra, const Eigen::Matrix3d& rb);
 

@@ -1,8 +1,8 @@
 #pragma once
 // Stiffness and strength of one local contact point from its area, paper (3)-(6).
+#include "rcdem/config/scenario.hpp"
 #include "rcdem/contact/laws/local_point_state.hpp"
 #include "rcdem/core/types.hpp"
-#include "rcdem/config/scenario.hpp"
 
 namespace rcdem {
 

@@ -4,8 +4,7 @@
 // points are then one contiguous run of lines, so a visit fetches 2 lines per point, where nine
 // history arrays and two network arrays took about 17 partly used lines for a contact of 6 points.
 // The damaged contacts of a cracked beam lie scattered among condensed ones, so that fetch, not
-// arithmetic, was the point path's largest cost: 1.07x steps/s on the cracked AN4 beam at 1
-// thread, 1.05x at 2 (bench/RESULTS.md, session 16).
+// arithmetic, is the point path's largest cost (bench/RESULTS.md has the measurements).
 #include <cstddef>
 #include <vector>
 

@@ -1,9 +1,9 @@
 #pragma once
 // Diameter distributions of SPEC 2: uniform in diameter (default), or a Fuller grading with mass
 // passing P(d) = (d / d_max)^q, whose number density is then proportional to d^(q - 4).
+#include "rcdem/config/scenario.hpp"
 #include "rcdem/core/rng.hpp"
 #include "rcdem/core/types.hpp"
-#include "rcdem/config/scenario.hpp"
 
 namespace rcdem {
 

@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "rcdem/core/types.hpp"
 #include "rcdem/config/scenario.hpp"
+#include "rcdem/core/types.hpp"
 
 namespace rcdem {
 

@@ -16,8 +16,8 @@
 // vibration of its own; a falling factor reacts four times faster than a rising one.
 #include <cstdint>
 
-#include "rcdem/core/types.hpp"
 #include "rcdem/config/scenario.hpp"
+#include "rcdem/core/types.hpp"
 #include "rcdem/solver/energy.hpp"
 
 namespace rcdem {

@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "rcdem/contact/laws/local_point_state.hpp"
-#include "rcdem/core/types.hpp"
 #include "rcdem/config/scenario.hpp"
 #include "rcdem/config/specimen_geometry.hpp"
+#include "rcdem/contact/laws/local_point_state.hpp"
+#include "rcdem/core/types.hpp"
 #include "rcdem/state/bodies.hpp"
 #include "rcdem/state/contact_network.hpp"
 

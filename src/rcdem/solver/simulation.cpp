@@ -442,8 +442,8 @@ void Simulation::gather_forces() {
   parallel_for(bodies, [&](Index i) {
     // A body's B-side contacts belong to particles before it along the curve, some far before:
     // their forces are no longer in cache, and waiting on them was most of the gather. Requested
-    // a few bodies ahead, they arrive while it sums: +4% steps/s at 1 thread on the elastic AN4
-    // beam, +11% at 2 (bench/RESULTS.md, session 14). The A side streams in contact order.
+    // a few bodies ahead, they arrive while it sums (measured in bench/RESULTS.md). The A side
+    // streams in contact order.
     constexpr Index kAhead = 6;
     if (i + kAhead < bodies)
       for (Index e = bc.begin[i + kAhead]; e < bc.mid[i + kAhead]; ++e) {
@@ -579,8 +579,8 @@ Real points_strain_energy(const ContactNetwork& net, const ContactState& cs) {
 
 Real Simulation::concrete_strain_energy() const {
   // By fixed blocks of contacts on every thread, then the blocks' sums in order: the same value
-  // at any thread count. A history row asks for it every few dozen steps, and serial it took 7 ms
-  // on the cracked AN4 beam, most of a 2-thread step (bench/RESULTS.md, session 13).
+  // at any thread count. A history row asks for it every few dozen steps, and serial it costs
+  // about a whole step of a cracked beam (bench/RESULTS.md).
   const ContactNetwork& net = specimen_.contacts;
   const bool condensed = condensation_.any_condensed;
   constexpr Index kBlock = 1024;

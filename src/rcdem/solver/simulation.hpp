@@ -4,12 +4,12 @@
 // and the energy ledger. Stop rules, history and snapshots live in the run loop (run.hpp).
 #include <vector>
 
+#include "rcdem/config/scenario.hpp"
 #include "rcdem/contact/contact_loop.hpp"
 #include "rcdem/contact/contact_state.hpp"
 #include "rcdem/contact/elastic_condensation.hpp"
 #include "rcdem/contact/laws/bilinear_softening.hpp"
 #include "rcdem/contact/laws/elastic.hpp"
-#include "rcdem/config/scenario.hpp"
 #include "rcdem/reinforcement/interaction_node.hpp"
 #include "rcdem/solver/body_contacts.hpp"
 #include "rcdem/solver/critical_time_step.hpp"

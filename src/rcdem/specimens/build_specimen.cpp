@@ -1,9 +1,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "rcdem/config/specimen_registry.hpp"
 #include "rcdem/packing/space_filling_order.hpp"
 #include "rcdem/specimens/specimen.hpp"
-#include "rcdem/config/specimen_registry.hpp"
 #include "rcdem/tessellation/cell_complex.hpp"
 
 namespace rcdem {

@@ -2,9 +2,9 @@
 // A generated specimen: its geometry, particles and VGCM-3D contact network, and what generation
 // measured on the way.
 #include "rcdem/config/scenario.hpp"
+#include "rcdem/config/specimen_geometry.hpp"
 #include "rcdem/packing/generator.hpp"
 #include "rcdem/reinforcement/bar_builder.hpp"
-#include "rcdem/config/specimen_geometry.hpp"
 #include "rcdem/state/contact_network.hpp"
 #include "rcdem/state/particles.hpp"
 #include "rcdem/tessellation/contact_network_builder.hpp"

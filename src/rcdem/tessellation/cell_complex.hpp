@@ -3,9 +3,9 @@
 // Kept per cell (both sides of every facet) so that tests can check facet(a,b) = facet(b,a).
 #include <vector>
 
-#include "rcdem/core/types.hpp"
 #include "rcdem/config/scenario.hpp"
 #include "rcdem/config/specimen_geometry.hpp"
+#include "rcdem/core/types.hpp"
 #include "rcdem/state/particles.hpp"
 
 namespace rcdem {
