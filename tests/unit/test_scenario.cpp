@@ -80,3 +80,90 @@ TEST(Schema, TemplateParsesBackWithEveryDefault) {
   EXPECT_EQ(s.generation.relaxation_iterations, 300);
   EXPECT_DOUBLE_EQ(s.contact.G_fn, 9.002);
 }
+
+// A key's default is written twice, in config/scenario_schema.cpp (what a file that omits the key
+// gets) and in the struct's member initialiser (what code that builds a Scenario gets, the tests
+// among them). Until one declaration binds both (issue 29, step 1), this test keeps them equal:
+// a scenario of only the required keys, one plate and one bar (its yield stress is required)
+// against default-constructed structs, field by field.
+TEST(Scenario, SchemaDefaultsEqualTheStructsDefaults) {
+  const Scenario s = parse_scenario(
+      "[specimen]\nshape = \"beam\"\nsize = [0.4, 0.1, 0.1]\n"
+      "[plates.p]\nface = \"z+\"\n[loading]\ncontrol_plate = \"p\"\n[stop]\nsteps = 1\n"
+      "[bars.b]\nstart = [0.05, 0.05, 0.02]\nend = [0.35, 0.05, 0.02]\ndiameter = 0.008\n"
+      "f_y = 5e8\n",
+      "defaults.toml");
+  const GenerationSettings g;
+  EXPECT_EQ(s.generation.seed, g.seed);
+  EXPECT_EQ(s.generation.porosity, g.porosity);
+  EXPECT_EQ(s.generation.relaxation_iterations, g.relaxation_iterations);
+  EXPECT_EQ(s.generation.min_distance_factor, g.min_distance_factor);
+  EXPECT_EQ(s.generation.max_particles, g.max_particles);
+  EXPECT_EQ(s.generation.aggregate_content, g.aggregate_content);
+  EXPECT_EQ(s.generation.aggregate_density, g.aggregate_density);
+  EXPECT_EQ(s.generation.aggregate_d_min, g.aggregate_d_min);
+  EXPECT_EQ(s.generation.aggregate_d_max, g.aggregate_d_max);
+  EXPECT_EQ(s.generation.aggregate_grading, g.aggregate_grading);
+  EXPECT_EQ(s.generation.fuller_exponent, g.fuller_exponent);
+  EXPECT_EQ(s.generation.mortar_d_min, g.mortar_d_min);
+  EXPECT_EQ(s.generation.mortar_d_max, g.mortar_d_max);
+  const Scenario d;
+  EXPECT_EQ(s.tessellation, d.tessellation);
+  EXPECT_EQ(s.law, d.law);
+  const ContactParameters c;
+  EXPECT_EQ(s.contact.E_bar, c.E_bar);
+  EXPECT_EQ(s.contact.alpha, c.alpha);
+  EXPECT_EQ(s.contact.mu_c, c.mu_c);
+  EXPECT_EQ(s.contact.sigma_nt, c.sigma_nt);
+  EXPECT_EQ(s.contact.tau, c.tau);
+  EXPECT_EQ(s.contact.G_fn, c.G_fn);
+  EXPECT_EQ(s.contact.G_fs, c.G_fs);
+  const SolverSettings v;
+  EXPECT_EQ(s.solver.density, v.density);
+  EXPECT_EQ(s.solver.estimate, v.estimate);
+  EXPECT_EQ(s.solver.dt_safety, v.dt_safety);
+  EXPECT_EQ(s.solver.time_step, v.time_step);
+  EXPECT_EQ(s.solver.damping, v.damping);
+  EXPECT_EQ(s.solver.mass_scaling, v.mass_scaling);
+  EXPECT_EQ(s.solver.added_mass_limit, v.added_mass_limit);
+  EXPECT_EQ(s.solver.bar_rotational_inertia_scaling, v.bar_rotational_inertia_scaling);
+  EXPECT_EQ(s.solver.particle_rotational_inertia_scaling, v.particle_rotational_inertia_scaling);
+  EXPECT_EQ(s.solver.condense_elastic_contacts, v.condense_elastic_contacts);
+  const LoadingRateSettings l;
+  EXPECT_EQ(s.loading_rate.adaptive, l.adaptive);
+  EXPECT_EQ(s.loading_rate.max_factor, l.max_factor);
+  EXPECT_EQ(s.loading_rate.kinetic_ratio, l.kinetic_ratio);
+  EXPECT_EQ(s.loading_rate.damage_work_ratio, l.damage_work_ratio);
+  EXPECT_EQ(s.loading_rate.doubling_time, l.doubling_time);
+  const StopSettings t;
+  EXPECT_EQ(s.stop.displacement, t.displacement);
+  EXPECT_EQ(s.stop.load_drop, t.load_drop);
+  EXPECT_EQ(s.stop.post_peak_displacement, t.post_peak_displacement);
+  EXPECT_EQ(s.stop.time, t.time);
+  const OutputSettings o;
+  EXPECT_EQ(s.output.binary_vtu, o.binary_vtu);
+  EXPECT_EQ(s.output.write_facets, o.write_facets);
+  EXPECT_EQ(s.output.history_rows, o.history_rows);
+  EXPECT_EQ(s.output.snapshots, o.snapshots);
+  const PlateSettings p;
+  ASSERT_EQ(s.plates.size(), 1u);
+  EXPECT_EQ(s.plates[0].extent, p.extent);
+  EXPECT_EQ(s.plates[0].velocity, p.velocity);
+  EXPECT_EQ(s.plates[0].ramp_time, p.ramp_time);
+  EXPECT_EQ(s.plates[0].glued, p.glued);
+  EXPECT_EQ(s.plates[0].friction, p.friction);
+  const BarSettings b;
+  ASSERT_EQ(s.bars.size(), 1u);
+  EXPECT_EQ(s.bars[0].cylinder_length, b.cylinder_length);
+  EXPECT_EQ(s.bars[0].E, b.E);
+  EXPECT_EQ(s.bars[0].nu, b.nu);
+  EXPECT_EQ(s.bars[0].density, b.density);
+  EXPECT_EQ(s.bars[0].interface, b.interface);
+  EXPECT_EQ(s.bars[0].interface_strength_scale, b.interface_strength_scale);
+  EXPECT_EQ(s.bars[0].interface_energy_scale, b.interface_energy_scale);
+  EXPECT_EQ(s.bars[0].sphere_spacing, b.sphere_spacing);
+  EXPECT_EQ(s.bars[0].pull_velocity, b.pull_velocity);
+  EXPECT_EQ(s.bars[0].pull_ramp_time, b.pull_ramp_time);
+  EXPECT_EQ(s.specimen.notch_depth, SpecimenSettings{}.notch_depth);
+  EXPECT_EQ(s.specimen.notch_width, SpecimenSettings{}.notch_width);
+}

@@ -16,7 +16,7 @@ struct SpecimenSettings {
   std::string shape;  // a name in the specimen registry
   Vec3 size = Vec3::Zero();
   Real notch_depth = 0.0;
-  Real notch_width = 0.0;
+  Real notch_width = 0.003;  // config/scenario_schema.cpp's default, kept equal by a test
 };
 
 enum class Grading { Uniform, Fuller };
