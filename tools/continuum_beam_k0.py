@@ -12,6 +12,8 @@ it and released where it would pull (an active set, re-solved until no node pull
 node passes through the plate). `--plates glued` holds every node under a plate in all three
 directions (an upper bound). Loading is displacement control; K = P / delta.
 
+Defaults: the study's beam and the concrete's elastic pair (tools/study_report.py).
+
 usage: continuum_beam_k0.py [--E PA] [--nu NU] [--plates frictionless|glued]
                             [--levels 1,2,3] [--span M] [--length M] [--width M] [--depth M]
                             [--plate-width M]
@@ -23,9 +25,14 @@ import itertools
 import sys
 import time
 
+import os
+
 import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import study_report as sr  # noqa: E402  (the beam's sizes and the concrete's elastic pair)
 
 GAUSS = (np.array([-np.sqrt(0.6), 0.0, np.sqrt(0.6)]), np.array([5.0, 8.0, 5.0]) / 9.0)
 
@@ -273,14 +280,14 @@ def extrapolate(results):
 
 def parser():
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    p.add_argument("--E", type=float, default=33.98e9, help="Young's modulus [Pa]")
-    p.add_argument("--nu", type=float, default=0.1498, help="Poisson's ratio")
+    p.add_argument("--E", type=float, default=sr.E_CONCRETE, help="Young's modulus [Pa]")
+    p.add_argument("--nu", type=float, default=sr.NU_CONCRETE, help="Poisson's ratio")
     p.add_argument("--plates", choices=("frictionless", "glued"), default="frictionless")
     p.add_argument("--levels", default="1,2,3", help="mesh refinement levels, coarse to fine")
-    p.add_argument("--span", type=float, default=0.600)
-    p.add_argument("--length", type=float, default=0.700)
-    p.add_argument("--width", type=float, default=0.150)
-    p.add_argument("--depth", type=float, default=0.100)
+    p.add_argument("--span", type=float, default=sr.SPAN)
+    p.add_argument("--length", type=float, default=sr.LENGTH)
+    p.add_argument("--width", type=float, default=sr.B)
+    p.add_argument("--depth", type=float, default=sr.H)
     p.add_argument("--plate-width", type=float, default=0.020)
     return p
 

@@ -204,12 +204,13 @@ CalibrationResult calibrate(const Scenario& base_in, const CalibrationOptions& o
         result.converged = true;
         break;
       }
-      const ContactParameters before = base.contact;
-      base.contact = update_parameters(before, m, t);
-      base.contact.sigma_nt = before.sigma_nt;
+      // The elastic pair from the update rule; tau and the lever from the secant.
+      const ContactParameters elastic = update_parameters(base.contact, m, t);
+      base.contact.E_bar = elastic.E_bar;
+      base.contact.alpha = elastic.alpha;
       Real& lever = by_energy ? base.contact.G_fn : base.contact.sigma_nt;
       const Eigen::Vector2d next =
-          strengths.step({before.tau, lever}, {m.sigma_c, m.sigma_t}, {t.sigma_c, t.sigma_t});
+          strengths.step({base.contact.tau, lever}, {m.sigma_c, m.sigma_t}, {t.sigma_c, t.sigma_t});
       base.contact.tau = next[0];
       lever = next[1];
       const Eigen::Matrix2d& jac = strengths.jacobian();

@@ -345,6 +345,7 @@ bool RunLoop::run(const std::function<void(const Simulation&)>& on_step) {
     }
     for (const auto& rule : rules)
       if (rule->triggered(view)) stop_reason_ = rule->reason();
+    // After the stop rules, so that the last step's line is printed before the loop ends.
     if (progress.trigger()(view.step)) progress.act(view);
     if (!stop_reason_.empty()) break;
     const auto now = std::chrono::steady_clock::now();
@@ -421,17 +422,12 @@ RunSummary RunLoop::interrupted() {
   } catch (const Error& e) {
     throw with_resume_hint(e);
   }
-  io::Manifest& manifest = session_.manifest();
-  auto& j = manifest.json();
-  j["exit_state"] = "interrupted";
-  j["end_time"] = iso_now();
-  manifest.session()["exit_state"] = "interrupted";
-  manifest.session()["signal"] = signal_name(signal_);
-  manifest.session()["end_time"] = j["end_time"];
-  manifest.session()["wall_seconds"] =
+  auto& session = session_.end("interrupted");
+  session["signal"] = signal_name(signal_);
+  session["wall_seconds"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - session_.wall_start())
           .count();
-  manifest.write_quietly();
+  session_.manifest().write_quietly();
   fmt::print(stderr,
              "rcdem: interrupted by {} at step {} (t = {:.6g} s); checkpoint {} written; resume "
              "with: rcdem run --resume {}\n",
@@ -514,15 +510,11 @@ void RunLoop::finish_manifest(const RunSummary& r, double wall,
                               std::chrono::steady_clock::time_point end) {
   io::Manifest& manifest = session_.manifest();
   auto& m = manifest.json();
-  m["exit_state"] = "finished";
   m["stop_reason"] = r.stop_reason;
-  m["end_time"] = iso_now();
   m["steps"] = r.steps;
   m["time_s"] = r.time;
   m["wall_seconds"] = wall;
-  manifest.session()["exit_state"] = "finished";
-  manifest.session()["end_time"] = m["end_time"];
-  manifest.session()["wall_seconds"] =
+  session_.end("finished")["wall_seconds"] =
       std::chrono::duration<double>(end - session_.wall_start()).count();
   if (session_.checkpoints() && !opt_.keep_checkpoints) {
     io::remove_checkpoints(out_);

@@ -119,15 +119,20 @@ void RunSession::started() {
   manifest_started_ = true;
 }
 
+nlohmann::ordered_json& RunSession::end(const std::string& state) {
+  auto& j = manifest_.json();
+  j["exit_state"] = state;
+  j["end_time"] = io::iso_now();
+  auto& session = manifest_.session();
+  session["exit_state"] = state;
+  session["end_time"] = j["end_time"];
+  return session;
+}
+
 void RunSession::record_failure(const std::string& what) {
   if (!manifest_started_) return;
-  auto& j = manifest_.json();
-  j["exit_state"] = "failed";
-  j["error"] = what;
-  j["end_time"] = io::iso_now();
-  manifest_.session()["exit_state"] = "failed";
-  manifest_.session()["error"] = what;
-  manifest_.session()["end_time"] = j["end_time"];
+  manifest_.json()["error"] = what;
+  end("failed")["error"] = what;
   manifest_.write_quietly();
 }
 

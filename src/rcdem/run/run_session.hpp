@@ -30,6 +30,9 @@ class RunSession {
   void started();
   // exit_state "failed" with the message, once the run has started (a resumed one always has).
   void record_failure(const std::string& what);
+  // Marks the run and this session as ended in `state` ("finished", "interrupted", ...) with the
+  // end time; returns this session's entry for what else it records. The caller writes.
+  nlohmann::ordered_json& end(const std::string& state);
 
  private:
   std::filesystem::path scenario_file(const Scenario& sc);
