@@ -159,6 +159,7 @@ TEST(Scenario, SchemaDefaultsEqualTheStructsDefaults) {
   EXPECT_EQ(s.bars[0].nu, b.nu);
   EXPECT_EQ(s.bars[0].density, b.density);
   EXPECT_EQ(s.bars[0].interface, b.interface);
+  EXPECT_EQ(s.bars[0].interface_softening, b.interface_softening);
   EXPECT_EQ(s.bars[0].interface_strength_scale, b.interface_strength_scale);
   EXPECT_EQ(s.bars[0].interface_energy_scale, b.interface_energy_scale);
   EXPECT_EQ(s.bars[0].sphere_spacing, b.sphere_spacing);

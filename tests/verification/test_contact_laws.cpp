@@ -11,7 +11,6 @@
 
 #include "rcdem/contact/laws/bilinear_softening.hpp"
 #include "rcdem/contact/laws/elastic.hpp"
-#include "rcdem/contact/laws/law_kind.hpp"
 #include "rcdem/contact/laws/local_point_state.hpp"
 
 using namespace rcdem;
@@ -389,28 +388,6 @@ TEST(ElasticLaw, AnyPathIsLinearWithoutDissipation) {
   EXPECT_EQ(p.s.damage, 0.0);
   EXPECT_LT(p.worst_step_balance, 1e-12 * p.c.kn * u_peak * u_peak);
   EXPECT_LT(std::abs(p.work - p.elastic_energy()), 1e-12 * p.c.kn * u_peak * u_peak);
-}
-
-TEST(LawKind, WithLawPassesTheConcreteLawType) {
-  const BilinearSoftening bl = table2();
-  const Elastic el;
-  const auto which = [](const auto& law) {
-    return std::is_same_v<std::decay_t<decltype(law)>, Elastic> ? 1 : 2;
-  };
-  EXPECT_EQ(with_law(LawKind::Elastic, bl, el, which), 1);
-  EXPECT_EQ(with_law(LawKind::BilinearSoftening, bl, el, which), 2);
-  // The chosen law really runs: BL caps tension, EL does not.
-  const LocalPointConstants c = point_constants(bl);
-  for (const LawKind kind : {LawKind::BilinearSoftening, LawKind::Elastic}) {
-    LocalPointState s;
-    with_law(kind, bl, el,
-             [&](const auto& law) { law.update(c, s, 10 * c.fn_max / c.kn, Vec3(Vec3::Zero())); });
-    if (kind == LawKind::Elastic) {
-      EXPECT_NEAR(s.fn, 10 * c.fn_max, 1e-9 * c.fn_max);
-    } else {
-      EXPECT_LT(s.fn, c.fn_max);
-    }
-  }
 }
 
 // (S3)-(S4) make D a non-decreasing function of the two historical maxima, which themselves never

@@ -233,7 +233,7 @@ TEST(SolverPair, PureOpeningFollowsBilinearTriangleAndDissipatesGfnA) {
   EXPECT_NEAR(dissipated / GA, 1.0, 0.01);
   EXPECT_NEAR(work / GA, 1.0, 0.01);  // independent: trapezoidal work of the contact force
   for (Index m = 0; m < 5; ++m) EXPECT_EQ(p.cs.point[m].damage, 1.0);
-  EXPECT_EQ(p.cs.strain_energy(p.net(), 0), 0.0);
+  EXPECT_EQ(p.cs.strain_energy(p.law, p.net(), 0), 0.0);
   RecordProperty("dissipated_over_GfnA", std::to_string(dissipated / GA));
   std::printf(
       "[pair opening] peak/(sigma A) - 1 = %.2e, dissipated/(G_fn A) - 1 = %.2e, work/(G_fn A) - 1 "
@@ -531,7 +531,7 @@ SofteningRotation rotate_softening_pair(int steps) {
   }
   const Snapshot s0 = snapshot(p);
   SofteningRotation r;
-  r.strain = p.cs.strain_energy(p.net(), 0);
+  r.strain = p.cs.strain_energy(p.law, p.net(), 0);
   const Vec3 xa = p.bodies.position[0], xb = p.bodies.position[1];
   const Vec3 c = 0.5 * (xa + xb);
   const Vec3 axis = Vec3(0.4, -0.7, 0.59).normalized();
@@ -603,7 +603,7 @@ TEST(SolverPair, RigidMotionOfUnloadedPairProducesNoForce) {
                       p.cs.torque_a[0].norm() / (scale * kD)});
   }
   EXPECT_LT(worst, 1e-9);
-  EXPECT_LT(p.cs.strain_energy(p.net(), 0), 1e-18 * scale * kD);
+  EXPECT_LT(p.cs.strain_energy(p.law, p.net(), 0), 1e-18 * scale * kD);
   std::printf("[pair unloaded rigid motion] worst |F| / (sum kn d 1e-3) = %.3g\n", worst);
 }
 

@@ -285,7 +285,7 @@ void convert_contact_and_solver(const Reader& r, Scenario& s) {
   c.G_fn = r.real("contact.G_fn");
   c.G_fs = r.real("contact.G_fs");
 
-  s.law = r.string("contact.law") == "EL" ? ConcreteLaw::Elastic : ConcreteLaw::BilinearSoftening;
+  s.law = r.string("contact.law");
   s.solver.density = r.real("material.density");
   s.solver.estimate = r.string("solver.time_step_estimate") == "assembled"
                           ? TimeStepEstimate::Assembled
@@ -358,6 +358,12 @@ BarSettings convert_bar(const Reader& r, const Scenario& s, const std::string& i
   b.interface = law == "EL"     ? InterfaceLaw::EL
                 : law == "NL-A" ? InterfaceLaw::NL_A
                                 : InterfaceLaw::NL_B;
+  b.interface_softening = r.string(inst + ".interface_softening");
+  if (b.interface == InterfaceLaw::EL && b.interface_softening != BarSettings{}.interface_softening)
+    fail(
+        "{}: key '{}.interface_softening': expected only with a nonlinear interface (NL-A, "
+        "NL-B); interface = \"EL\" does not soften",
+        r.at(inst + ".interface_softening"), inst);
   b.interface_strength_scale = r.real(inst + ".interface_strength_scale");
   b.interface_energy_scale = r.real(inst + ".interface_energy_scale");
   if (b.interface == InterfaceLaw::EL &&
@@ -365,7 +371,7 @@ BarSettings convert_bar(const Reader& r, const Scenario& s, const std::string& i
     const std::string key = inst + (b.interface_strength_scale != 1.0 ? ".interface_strength_scale"
                                                                       : ".interface_energy_scale");
     fail(
-        "{}: key '{}': expected only with a BL interface (NL-A, NL-B); interface = \"EL\" "
+        "{}: key '{}': expected only with a nonlinear interface (NL-A, NL-B); interface = \"EL\" "
         "has no strength to scale",
         r.at(key), key);
   }

@@ -48,8 +48,6 @@ struct ContactParameters {
   Real G_fs = 2380.785;
 };
 
-enum class ConcreteLaw { BilinearSoftening, Elastic };
-
 // How SPEC 6's time step is estimated: each body alone (solver/body_stiffness.hpp) or the
 // assembled system's highest frequency (solver/critical_time_step.hpp).
 enum class TimeStepEstimate { PerBody, Assembled };
@@ -114,6 +112,8 @@ struct BarSettings {
   Real cylinder_length = 0.032;
   Real E = 200.0e9, nu = 0.3, f_y = 0.0, density = 7850.0;
   InterfaceLaw interface = InterfaceLaw::NL_B;
+  // The softening law of an NL-A or NL-B interface, by its name in contact/laws/law_registry.hpp.
+  std::string interface_softening = "BL";
   Real interface_strength_scale = 1.0;  // on sigma_n,t and tau of a BL interface
   Real interface_energy_scale = 1.0;    // on G_fn and G_fs of a BL interface
   Real sphere_spacing = 0.0;            // 0 = D / 2
@@ -146,7 +146,7 @@ struct Scenario {
   GenerationSettings generation;
   TessellationKind tessellation = TessellationKind::Voronoi;
   ContactParameters contact;
-  ConcreteLaw law = ConcreteLaw::BilinearSoftening;
+  std::string law = "BL";  // contact.law: a name in contact/laws/law_registry.hpp
   SolverSettings solver;
   std::vector<PlateSettings> plates;  // in the order given
   std::vector<BarSettings> bars;      // in the order given

@@ -122,9 +122,9 @@ void declare_contact_and_solver(Schema& s) {
   s.key(positive("contact.G_fn", 9.002, 1e8, "J/m^2", "G_f,n: fracture energy in tension."));
   s.key(positive("contact.G_fs", 2380.785, 1e8, "J/m^2", "G_f,s: fracture energy in shear."));
 
-  s.key(
-      choice("contact.law", std::string("BL"), {"BL", "EL"},
-             "Concrete contact law: 'BL' bilinear softening (paper 2.4, SPEC 5) or 'EL' elastic."));
+  s.key(choice("contact.law", std::string("BL"), {"BL", "EL"},
+               "Concrete contact law (contact/laws/law_registry.hpp): 'BL' bilinear softening "
+               "(paper 2.4, SPEC 5), 'EL' elastic."));
 
   s.section("material", "Concrete as a continuum (SPEC 6).");
   s.key(positive("material.density", 2400.0, 1e5, "kg/m^3",
@@ -254,14 +254,20 @@ void declare_bars_and_output(Schema& s) {
   s.key(positive("bars.*.f_y", std::nullopt, 1e11, "Pa",
                  "Yield stress: the axial force plateaus at f_y A."));
   s.key(positive("bars.*.density", 7850.0, 1e5, "kg/m^3", "Density of the steel."));
-  s.key(choice("bars.*.interface", std::string("NL-B"), {"EL", "NL-A", "NL-B"},
-               "Steel-concrete interface law: 'EL' elastic, 'NL-A' BL with the concrete's "
-               "parameters, 'NL-B' BL with sigma_n,t and tau halved (paper 3, Table 3)."));
+  s.key(choice(
+      "bars.*.interface", std::string("NL-B"), {"EL", "NL-A", "NL-B"},
+      "Steel-concrete interface: 'EL' elastic, 'NL-A' softening with the concrete's "
+      "parameters, 'NL-B' the same with sigma_n,t and tau halved (paper 3, Table 3); the law: "
+      "interface_softening."));
+  s.key(choice("bars.*.interface_softening", std::string("BL"), {"BL"},
+               "The softening law of an NL-A or NL-B interface, one of contact.law's softening "
+               "laws: 'BL' bilinear softening."));
   s.key(real("bars.*.interface_strength_scale", 1.0, Range{0.0, 1e6, true, false}, "",
-             "Multiplies sigma_n,t and tau of a BL interface (NL-A, NL-B; after NL-B's halving): "
+             "Multiplies sigma_n,t and tau of a nonlinear interface (NL-A, NL-B; after NL-B's "
+             "halving): "
              "for studies of the bond beyond the paper's two variants."));
   s.key(real("bars.*.interface_energy_scale", 1.0, Range{0.0, 1e6, true, false}, "",
-             "Multiplies G_fn and G_fs of a BL interface (NL-A, NL-B)."));
+             "Multiplies G_fn and G_fs of a nonlinear interface (NL-A, NL-B)."));
   s.key(real("bars.*.pull_velocity", 0.0, Range{0.0, 1e3}, "m/s",
              "Pull-out: the bar's first cylinder (at 'start') is moved at this speed along end -> "
              "start, its rotation held (0 = not pulled)."));

@@ -34,14 +34,4 @@ void ContactState::init(const ContactNetwork& net, const std::vector<Vec3>& x,
   dissipated_friction.assign(nc, 0.0);
 }
 
-Real ContactState::strain_energy(const ContactNetwork& net, Index c) const {
-  Real e = 0.0;
-  for (Index m = net.point_begin[c]; m < net.point_begin[c + 1]; ++m) {
-    const LocalPointState s = point[m];
-    const LocalPointConstants& k = net.constants[m];
-    e += 0.5 * s.fn * s.fn / k.kn + 0.5 * s.fs.squaredNorm() / k.ks;
-  }
-  return e;
-}
-
 }  // namespace rcdem

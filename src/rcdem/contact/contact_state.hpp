@@ -43,9 +43,15 @@ struct ContactState {
     return local.x() * tangent[c] + local.y() * normal[c].cross(tangent[c]);
   }
 
-  // The elastic energy held by contact c's local points now: sum of fn^2/2kn + |fs|^2/2ks
-  // (SPEC 11). Not kept per step: the ledger asks for it when it reports.
-  Real strain_energy(const ContactNetwork& net, Index c) const;
+  // The elastic energy held by contact c's local points now, each as its law stores it (SPEC 11).
+  // Not kept per step: the ledger asks for it when it reports.
+  template <typename Law>
+  Real strain_energy(const Law& law, const ContactNetwork& net, Index c) const {
+    Real e = 0.0;
+    for (Index m = net.point_begin[c]; m < net.point_begin[c + 1]; ++m)
+      e += law.elastic_energy(net.constants[m], point[m]);
+    return e;
+  }
 
   void init(const ContactNetwork& net, const std::vector<Vec3>& positions,
             const std::vector<Vec3>* anchor0 = nullptr, const std::vector<Vec3>* axis0 = nullptr);

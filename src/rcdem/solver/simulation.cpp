@@ -20,9 +20,7 @@ Simulation::Simulation(const Scenario& sc, Specimen specimen)
     : specimen_(std::move(specimen)),
       bodies_(bodies_from_particles(specimen_.particles, sc.solver.density, sc.solver.mass_scaling,
                                     specimen_.concrete())),
-      law_kind_(sc.law),
-      bilinear_{sc.contact.sigma_nt, sc.contact.tau, sc.contact.G_fn, sc.contact.G_fs,
-                sc.contact.mu_c},
+      law_(make_contact_law(sc.law, sc.contact)),
       damping_(sc.solver.damping),
       loading_rate_(sc.loading_rate) {
   for (Vec3& inertia : bodies_.inertia) inertia *= sc.solver.particle_rotational_inertia_scaling;
@@ -79,13 +77,13 @@ Simulation::Simulation(const Scenario& sc, Specimen specimen)
     ContactState state;
     state.init(ic.net, bodies_.position, &ic.anchor0, &axes);
     interface_states_.push_back(std::move(state));
-    const InterfaceLaw law = sc.bars[k].interface;
-    const ContactParameters p = interface_parameters(sc.contact, sc.bars[k]);
-    interface_law_.push_back(law);
-    interface_bl_.push_back(BilinearSoftening{p.sigma_nt, p.tau, p.G_fn, p.G_fs, p.mu_c});
+    const BarSettings& bar = sc.bars[k];
+    interface_law_.push_back(
+        make_contact_law(bar.interface == InterfaceLaw::EL ? "EL" : bar.interface_softening,
+                         interface_parameters(sc.contact, bar), "bars.*.interface_softening"));
   }
   contacts_.init(specimen_.contacts, bodies_.position);
-  if (sc.solver.condense_elastic_contacts && law_kind_ == ConcreteLaw::BilinearSoftening)
+  if (sc.solver.condense_elastic_contacts && condensable(law_))
     condensation_ = ElasticCondensation::build(specimen_.contacts, bodies_.position0);
   body_contacts_ = BodyContacts::build(specimen_.contacts, bodies_.size());
   plates_ = make_plates(sc.plates, specimen_.geometry);
@@ -286,9 +284,14 @@ ContactInputs Simulation::concrete_inputs(const std::vector<Vec3>& positions,
 void Simulation::catch_up_condensed_points() const {
   // The last evaluation's kinematics: its centres and orientation matrices, both kept until the
   // next step forms them anew.
-  if (condensation_.any_condensed)
-    catch_up_condensed(bilinear_, concrete_inputs(position_eval_, rotation_), contacts_,
-                       condensation_);
+  if (!condensation_.any_condensed) return;
+  std::visit(
+      [&](const auto& law) {
+        if constexpr (kCondensableLaw<std::decay_t<decltype(law)>>)
+          catch_up_condensed(law, concrete_inputs(position_eval_, rotation_), contacts_,
+                             condensation_);
+      },
+      law_);
 }
 
 Real PulledBar::velocity_at(Real t) const {
@@ -324,11 +327,15 @@ void Simulation::step() {
   ContactInputs concrete = concrete_inputs(position_eval_, rotation_);
   concrete.pose = pose_.ptr();
   const ContactInputs previous = concrete_inputs(position_prev_, rotation_prev_);
-  if (law_kind_ == ConcreteLaw::BilinearSoftening)
-    evaluate_contacts(bilinear_, concrete, contacts_,
-                      condensation_.sums.empty() ? nullptr : &condensation_, &previous);
-  else
-    evaluate_contacts(elastic_, concrete, contacts_);
+  ElasticCondensation* condensed = condensation_.sums.empty() ? nullptr : &condensation_;
+  std::visit(
+      [&](const auto& law) {
+        if constexpr (kCondensableLaw<std::decay_t<decltype(law)>>)
+          evaluate_contacts(law, concrete, contacts_, condensed, &previous);
+        else
+          evaluate_contacts(law, concrete, contacts_);
+      },
+      law_);
   // Steel-concrete interfaces (each bar with its law), interaction nodes, 2. plates.
   parallel_tasks(static_cast<Index>(small_tasks_.size()),
                  [&](Index j) { run_small_task(small_tasks_[static_cast<std::size_t>(j)]); });
@@ -410,13 +417,11 @@ void Simulation::run_small_task(const SmallTask& task) {
       const ContactInputs in =
           body_inputs(ic.net, bodies_, rotation_.data(), ic.anchor0.data(), dt_);
       ContactState& st = interface_states_[task.bar];
-      const auto run = [&](const auto& law) {
-        for (Index c = task.begin; c < task.end; ++c) evaluate_contact(law, in, st, nullptr, c);
-      };
-      if (interface_law_[task.bar] == InterfaceLaw::EL)
-        run(elastic_);
-      else
-        run(interface_bl_[task.bar]);
+      std::visit(
+          [&](const auto& law) {
+            for (Index c = task.begin; c < task.end; ++c) evaluate_contact(law, in, st, nullptr, c);
+          },
+          interface_law_[task.bar]);
       break;
     }
     case SmallTask::kPlates:
@@ -570,10 +575,15 @@ void Simulation::integrate() {
 
 namespace {
 // The elastic energy held by a network's local points (SPEC 11), summed in a fixed order.
-Real points_strain_energy(const ContactNetwork& net, const ContactState& cs) {
-  Real e = 0.0;
-  for (Index c = 0; c < net.contact_count(); ++c) e += cs.strain_energy(net, c);
-  return e;
+Real points_strain_energy(const ContactLaw& law, const ContactNetwork& net,
+                          const ContactState& cs) {
+  return std::visit(
+      [&](const auto& l) {
+        Real e = 0.0;
+        for (Index c = 0; c < net.contact_count(); ++c) e += cs.strain_energy(l, net, c);
+        return e;
+      },
+      law);
 }
 }  // namespace
 
@@ -586,19 +596,23 @@ Real Simulation::concrete_strain_energy() const {
   constexpr Index kBlock = 1024;
   const Index n = net.contact_count();
   strain_energy_blocks_.assign(static_cast<std::size_t>((n + kBlock - 1) / kBlock), 0.0);
-  parallel_for_blocks(n, kBlock, [&](Index begin, Index end) {
-    // Condensed contacts from their sums at the last evaluation's kinematics (their histories are
-    // stale), the others from their points.
-    Real e = 0.0;
-    for (Index c = begin; c < end; ++c) {
-      const Index a = net.particle_a[c], b = net.particle_b[c];
-      e += condensed && condensation_.condensed[static_cast<std::size_t>(c)]
-               ? condensed_strain_energy(condensation_.sums, c, position_eval_[a],
-                                         position_eval_[b], rotation_[a], rotation_[b])
-               : contacts_.strain_energy(net, c);
-    }
-    strain_energy_blocks_[static_cast<std::size_t>(begin / kBlock)] = e;
-  });
+  std::visit(
+      [&](const auto& law) {
+        parallel_for_blocks(n, kBlock, [&](Index begin, Index end) {
+          // Condensed contacts from their sums at the last evaluation's kinematics (their
+          // histories are stale), the others from their points.
+          Real e = 0.0;
+          for (Index c = begin; c < end; ++c) {
+            const Index a = net.particle_a[c], b = net.particle_b[c];
+            e += condensed && condensation_.condensed[static_cast<std::size_t>(c)]
+                     ? condensed_strain_energy(condensation_.sums, c, position_eval_[a],
+                                               position_eval_[b], rotation_[a], rotation_[b])
+                     : contacts_.strain_energy(law, net, c);
+          }
+          strain_energy_blocks_[static_cast<std::size_t>(begin / kBlock)] = e;
+        });
+      },
+      law_);
   Real e = 0.0;
   for (const Real block : strain_energy_blocks_) e += block;
   return e;
@@ -608,7 +622,8 @@ Real Simulation::strain_energy() const {
   Real strain = concrete_strain_energy();
   for (Index j = 0; j < plate_contacts_.size(); ++j) strain += plate_contacts_.strain_energy[j];
   for (std::size_t k = 0; k < interface_states_.size(); ++k)
-    strain += points_strain_energy(specimen_.interfaces[k].net, interface_states_[k]);
+    strain +=
+        points_strain_energy(interface_law_[k], specimen_.interfaces[k].net, interface_states_[k]);
   for (std::size_t j = 0; j < nodes_.size(); ++j)
     strain += node_elastic_energy(nodes_[j], node_states_[j]);
   return strain;

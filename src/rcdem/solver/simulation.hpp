@@ -8,8 +8,7 @@
 #include "rcdem/contact/contact_loop.hpp"
 #include "rcdem/contact/contact_state.hpp"
 #include "rcdem/contact/elastic_condensation.hpp"
-#include "rcdem/contact/laws/bilinear_softening.hpp"
-#include "rcdem/contact/laws/elastic.hpp"
+#include "rcdem/contact/laws/law_registry.hpp"
 #include "rcdem/reinforcement/interaction_node.hpp"
 #include "rcdem/solver/body_contacts.hpp"
 #include "rcdem/solver/critical_time_step.hpp"
@@ -149,12 +148,9 @@ class Simulation {
   BodyContacts body_contacts_;
   std::vector<Plate> plates_;
   PlateContacts plate_contacts_;
-  ConcreteLaw law_kind_;
-  BilinearSoftening bilinear_;
-  Elastic elastic_;
-  std::vector<ContactState> interface_states_;   // per bar
-  std::vector<BilinearSoftening> interface_bl_;  // per bar (NL-A, NL-B)
-  std::vector<InterfaceLaw> interface_law_;      // per bar
+  ContactLaw law_;                              // the concrete's (contact.law)
+  std::vector<ContactState> interface_states_;  // per bar
+  std::vector<ContactLaw> interface_law_;       // per bar
   std::vector<InteractionNode> nodes_;
   std::vector<NodeRef> node_refs_;
   std::vector<NodeState> node_states_;

@@ -11,6 +11,7 @@
 #include <cmath>
 
 #include "rcdem/contact/laws/local_point_state.hpp"
+#include "rcdem/contact/laws/shear_envelope.hpp"
 
 namespace rcdem {
 
@@ -30,9 +31,19 @@ struct BilinearSoftening {
   Real G_fs = 0;      // shear fracture energy [J/m^2]
   Real mu_c = 0;      // friction coefficient, (S5)
 
+  // An intact point below its limits holds fn = kn u_n, fs = -ks u_s exactly (the trial forces
+  // below): its contact may be evaluated from its sums (law_registry.hpp, kCondensableLaw).
+  static constexpr bool kCondensable = true;
+
   // Ultimate displacements of the softening triangles (S2); independent of the point's area.
   Real u_nu() const { return 2 * G_fn / sigma_nt; }
   Real u_su() const { return 2 * G_fs / tau; }
+
+  // The elastic energy held at the point (SPEC 11): fn^2/2kn + |fs|^2/2ks (unloading keeps kn).
+  template <typename V>
+  Real elastic_energy(const LocalPointConstants& c, const BasicPointState<V>& s) const {
+    return 0.5 * s.fn * s.fn / c.kn + shear_energy(c, s.fs);
+  }
 
   // Advances the point to the accumulated relative displacement u_n along n (opening positive)
   // and u_s in the current contact plane (SPEC 4; the increments of the step are u - s.u). The
@@ -85,35 +96,18 @@ struct BilinearSoftening {
     const Real fn_cap = (1 - d) * c.fn_max;
     const bool normal_capped = fn_trial > fn_cap;
     s.fn = normal_capped ? fn_cap : fn_trial;
-    const Real friction = mu_c * std::max<Real>(0, -s.fn);
-    const Real fs_cap = (1 - d) * c.c_max + friction;  // >= 0
-    const Real fs_trial_sq = fs_trial.squaredNorm();
-    const bool shear_capped = fs_trial_sq > fs_cap * fs_cap;
-    s.fs = shear_capped ? V((fs_cap / std::sqrt(fs_trial_sq)) * fs_trial) : fs_trial;
 
-    // Dissipation = work - dE, with E = fn^2/2kn + |fs|^2/2ks and the work of the relative
-    // displacement fn dun - fs . dus (fs resists dus). Since dun = (fn_trial - fn_old)/kn, this is
-    // f_eff (fn_trial - fn_new)/kn, with f_eff the mean force over the inelastic part of the step
-    // (likewise in shear); an elastic step dissipates exactly zero. f_eff: the trapezoid
-    // (fn_old + fn_new)/2 while the force falls along the softening line, where the force is
-    // linear in the displacement and the trapezoid is exact; fn_new where the step first rises
-    // elastically to the cap (first yield, or reopening from compression), where the trapezoid
-    // would book the elastic rise as inelastic and could go negative. So dissipation is >= 0 for
-    // any step and converges to the exact value; per step it equals the trapezoidal work - dE
-    // only on the softening line.
+    // Dissipation = work - dE, with E = fn^2/2kn + |fs|^2/2ks: in the normal direction, since
+    // dun = (fn_trial - fn_old)/kn, it is f_eff (fn_trial - fn_new)/kn, with f_eff the mean force
+    // over the inelastic part of the step (the trapezoid along the softening line, where it is
+    // exact; fn_new where the step first rises elastically to the cap: first yield, or reopening
+    // from compression). So dissipation is >= 0 for any step, exactly zero for an elastic one,
+    // and converges to the exact value. The shear part: shear_envelope.hpp.
     if (normal_capped) {
       const Real f_eff = 0.5 * (std::max(fn_old, s.fn) + s.fn);
       r.dissipated += f_eff * (fn_trial - s.fn) / c.kn;
     }
-    if (shear_capped) {
-      const V f_eff = fs_old.squaredNorm() > s.fs.squaredNorm() ? V(0.5 * (fs_old + s.fs)) : s.fs;
-      // max(0, .): only a step reversing the slip by more than the elastic range, impossible at a
-      // stable time step, could make the trapezoid negative here.
-      const Real dissipated_shear = std::max<Real>(0, f_eff.dot(fs_trial - s.fs) / c.ks);
-      r.dissipated += dissipated_shear;
-      // Split by the make-up of the cap the force ended on: friction's share of it.
-      if (fs_cap > 0) r.dissipated_friction = dissipated_shear * (friction / fs_cap);
-    }
+    s.fs = cap_shear(c, mu_c, d, s.fn, fs_old, fs_trial, r);
     return r;
   }
 };

@@ -5,10 +5,20 @@
 #include <algorithm>
 
 #include "rcdem/contact/laws/local_point_state.hpp"
+#include "rcdem/contact/laws/shear_envelope.hpp"
 
 namespace rcdem {
 
 struct Elastic {
+  // Its contacts always go through their points: with no limit, a contact would never leave
+  // the condensed kernel, whose catch-up assumes BL's intact branch.
+  static constexpr bool kCondensable = false;
+
+  template <typename V>
+  Real elastic_energy(const LocalPointConstants& c, const BasicPointState<V>& s) const {
+    return 0.5 * s.fn * s.fn / c.kn + shear_energy(c, s.fs);
+  }
+
   // Same contract as BilinearSoftening::update; never dissipates.
   template <typename V>
   [[gnu::always_inline]] LawResult update(const LocalPointConstants& c, BasicPointState<V>& s,

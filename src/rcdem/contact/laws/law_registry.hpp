@@ -1,0 +1,54 @@
+#pragma once
+// The table of contact laws by name: the one place that turns a scenario's choice (contact.law,
+// bars.*.interface_softening) into a law. A set of points holds one ContactLaw; the solver picks
+// the alternative with std::visit once per loop over its contacts, and the loop over points is a
+// template on the law's type, so each point's update is inlined with no dispatch.
+//
+// Adding a law (docs/architecture.md, "A contact law"): its header, its type in ContactLaw and its
+// row in kContactLaws below, the name in the schema's choices, and its tests.
+#include <string_view>
+#include <type_traits>
+#include <variant>
+
+#include "rcdem/config/scenario.hpp"  // ContactParameters
+#include "rcdem/contact/laws/bilinear_softening.hpp"
+#include "rcdem/contact/laws/elastic.hpp"
+
+namespace rcdem {
+
+using ContactLaw = std::variant<BilinearSoftening, Elastic>;
+
+struct ContactLawRow {
+  std::string_view name;  // the value of contact.law or bars.*.interface_softening
+  std::string_view summary;
+  // Softens (has strengths and fracture energies): may be a nonlinear interface's law.
+  bool softening;
+  ContactLaw (*make)(const ContactParameters& p);
+};
+
+inline constexpr ContactLawRow kContactLaws[] = {
+    {"BL", "bilinear softening (paper 2.4, SPEC 5)", true,
+     [](const ContactParameters& p) -> ContactLaw {
+       return BilinearSoftening{p.sigma_nt, p.tau, p.G_fn, p.G_fs, p.mu_c};
+     }},
+    {"EL", "elastic, no strength limit (SPEC 5)", false,
+     [](const ContactParameters&) -> ContactLaw { return Elastic{}; }},
+};
+
+// The row named `name`, or null.
+const ContactLawRow* find_contact_law(std::string_view name);
+
+// The law named `name` with the parameters p (Table 2's, or an interface's). An unknown name is
+// an error naming `key` (the scenario validates names against the same table first).
+ContactLaw make_contact_law(std::string_view name, const ContactParameters& p,
+                            std::string_view key = "contact.law");
+
+// Whether a law's intact points may be evaluated from their contact's sums
+// (contact/elastic_condensation.hpp): the law's kCondensable, an opt-in trait. A law opts in only
+// if a point with D = 0 below fn_max and c_max holds exactly fn = kn u_n and fs = -ks u_s, as the
+// condensed kernel and its catch-up assume.
+template <typename Law>
+inline constexpr bool kCondensableLaw = Law::kCondensable;
+bool condensable(const ContactLaw& law);
+
+}  // namespace rcdem
