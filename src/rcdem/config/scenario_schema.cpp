@@ -122,9 +122,10 @@ void declare_contact_and_solver(Schema& s) {
   s.key(positive("contact.G_fn", 9.002, 1e8, "J/m^2", "G_f,n: fracture energy in tension."));
   s.key(positive("contact.G_fs", 2380.785, 1e8, "J/m^2", "G_f,s: fracture energy in shear."));
 
-  s.key(choice("contact.law", std::string("BL"), {"BL", "EL"},
+  s.key(choice("contact.law", std::string("BL"), {"BL", "EL", "exponential"},
                "Concrete contact law (contact/laws/law_registry.hpp): 'BL' bilinear softening "
-               "(paper 2.4, SPEC 5), 'EL' elastic."));
+               "(paper 2.4, SPEC 5), 'EL' elastic, 'exponential' scalar damage with "
+               "exponential softening regularised by G_f,n (YADE's CPM damage law)."));
 
   s.section("material", "Concrete as a continuum (SPEC 6).");
   s.key(positive("material.density", 2400.0, 1e5, "kg/m^3",
@@ -259,9 +260,9 @@ void declare_bars_and_output(Schema& s) {
       "Steel-concrete interface: 'EL' elastic, 'NL-A' softening with the concrete's "
       "parameters, 'NL-B' the same with sigma_n,t and tau halved (paper 3, Table 3); the law: "
       "interface_softening."));
-  s.key(choice("bars.*.interface_softening", std::string("BL"), {"BL"},
+  s.key(choice("bars.*.interface_softening", std::string("BL"), {"BL", "exponential"},
                "The softening law of an NL-A or NL-B interface, one of contact.law's softening "
-               "laws: 'BL' bilinear softening."));
+               "laws: 'BL' bilinear softening or 'exponential'."));
   s.key(real("bars.*.interface_strength_scale", 1.0, Range{0.0, 1e6, true, false}, "",
              "Multiplies sigma_n,t and tau of a nonlinear interface (NL-A, NL-B; after NL-B's "
              "halving): "

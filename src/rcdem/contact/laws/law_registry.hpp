@@ -13,10 +13,11 @@
 #include "rcdem/config/scenario.hpp"  // ContactParameters
 #include "rcdem/contact/laws/bilinear_softening.hpp"
 #include "rcdem/contact/laws/elastic.hpp"
+#include "rcdem/contact/laws/exponential_softening.hpp"
 
 namespace rcdem {
 
-using ContactLaw = std::variant<BilinearSoftening, Elastic>;
+using ContactLaw = std::variant<BilinearSoftening, Elastic, ExponentialSoftening>;
 
 struct ContactLawRow {
   std::string_view name;  // the value of contact.law or bars.*.interface_softening
@@ -33,6 +34,10 @@ inline constexpr ContactLawRow kContactLaws[] = {
      }},
     {"EL", "elastic, no strength limit (SPEC 5)", false,
      [](const ContactParameters&) -> ContactLaw { return Elastic{}; }},
+    {"exponential", "scalar damage, exponential softening regularised by G_f,n (YADE's CPM)", true,
+     [](const ContactParameters& p) -> ContactLaw {
+       return ExponentialSoftening{p.sigma_nt, p.tau, p.G_fn, p.G_fs, p.mu_c};
+     }},
 };
 
 // The row named `name`, or null.
