@@ -23,8 +23,11 @@ template <typename V>
   const Real friction = mu_c * std::max<Real>(0, -fn);
   const Real fs_cap = (1 - d) * c.c_max + friction;  // >= 0
   const Real fs_trial_sq = fs_trial.squaredNorm();
-  if (!(fs_trial_sq > fs_cap * fs_cap)) return fs_trial;
-  const V fs = V((fs_cap / std::sqrt(fs_trial_sq)) * fs_trial);
+  // The capped force as a select before the branch: with an early return instead, BL's point
+  // update compiled to a slower path (bench/RESULTS.md, "Architecture").
+  const bool capped = fs_trial_sq > fs_cap * fs_cap;
+  const V fs = capped ? V((fs_cap / std::sqrt(fs_trial_sq)) * fs_trial) : fs_trial;
+  if (!capped) return fs;
   const V f_eff = fs_old.squaredNorm() > fs.squaredNorm() ? V(0.5 * (fs_old + fs)) : fs;
   // max(0, .): only a step reversing the slip by more than the elastic range, impossible at a
   // stable time step, could make the trapezoid negative here.
