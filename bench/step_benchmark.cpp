@@ -158,8 +158,7 @@ ByteCount count_bytes(const rcdem::Simulation& sim) {
   b.per_interface_contact = (2 * I + I + V + 2 * 2 * V + 3 * V + 2 * R + 3 * V + Q)  // loop
                             + (2 * I + 3 * V + 2 * 2 * V)                            // gather
                             + 2 * R;                                                 // energy
-  using NodeRef = rcdem::Simulation::NodeRef;
-  constexpr double NR = sizeof(NodeRef), NC = sizeof(rcdem::InteractionNode),
+  constexpr double NR = sizeof(rcdem::NodeRef), NC = sizeof(rcdem::InteractionNode),
                    NS = sizeof(rcdem::NodeState), NF = sizeof(rcdem::NodeForces);
   b.per_node = (NR + NC + 2 * NS + NF + 2 * (V + Q))  // node loop
                + (NR + NF + 2 * 2 * 2 * V)            // gather

@@ -7,9 +7,11 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <random>
 #include <sstream>
 #include <string>
@@ -422,4 +424,67 @@ TEST(Checkpoint, StateDoesNotDependOnThreadCount) {
   EXPECT_EQ(dt[0], dt[1]);
   EXPECT_EQ(difference(state[0], state[1]), "") << "1 and 2 threads differ";
 #endif
+}
+
+// The sections' widths are format version 4's (docs/checkpoint.md), now that each struct's
+// serialize() names its columns and the width follows from their types: a column added or dropped
+// without a new format version fails here, empty tables included (small_run pulls no bar).
+TEST(Checkpoint, SectionWidthsAreThoseOfFormatVersion4) {
+  ASSERT_EQ(io::kCheckpointVersion, 4U);
+  const Scenario sc = small_run();
+  Simulation sim(sc, build_specimen(sc));
+  io::History history(sim, "top");
+  TempDir dir;
+  io::SnapshotWriter snapshots(dir.path(), false, true);
+  io::CrackRecord cracks(sim);
+  io::LoopState loop;
+  for (int i = 0; i < 20; ++i) sim.step();
+  history.record(sim);
+  const std::string file = io::encode_checkpoint({&sim, &history, &snapshots, &cracks, &loop}, 3);
+  const auto u32 = [&](std::size_t at) {
+    std::uint32_t v = 0;
+    std::memcpy(&v, file.data() + at, 4);
+    return v;
+  };
+  const auto u64 = [&](std::size_t at) {
+    std::uint64_t v = 0;
+    std::memcpy(&v, file.data() + at, 8);
+    return v;
+  };
+  std::map<std::string, std::pair<std::uint32_t, std::uint64_t>> sections;  // width, count
+  std::size_t at = 64 + u32(60);
+  for (std::uint32_t s = 0, n = u32(56); s < n; ++s) {
+    const std::string name = file.substr(at + 4, u32(at));
+    at += 4 + name.size();
+    const std::uint32_t kind = u32(at), width = u32(at + 4);
+    const std::uint64_t count = u64(at + 8);
+    sections[name] = {width, count};
+    at += 16 + (kind == 1 ? 8 * width * count : count);
+  }
+  EXPECT_EQ(at + 4, file.size());
+  const std::map<std::string, std::uint32_t> v4 = {
+      {"bodies", 22},
+      {"bodies.step", 3},
+      {"contacts", 17},
+      {"contacts.points", 9},
+      {"interface.0", 17},
+      {"interface.0.points", 9},
+      {"nodes", 35},
+      {"plates", 8},
+      {"plate_contacts", 21},
+      {"pulled_bars", 7},
+      {"solver", 11},
+      {"loading_rate", 3},
+      {"history", static_cast<std::uint32_t>(history.columns().size())},
+      {"snapshots.particles", 1},
+      {"snapshots.facets", 1},
+      {"snapshots.bars", 1},
+      {"cracks", 7},
+      {"run", 8}};
+  for (const auto& [name, width] : v4) {
+    ASSERT_TRUE(sections.count(name)) << name;
+    EXPECT_EQ(sections[name].first, width) << name;
+  }
+  EXPECT_EQ(sections["pulled_bars"].second, 0U);  // an empty table keeps its width
+  EXPECT_EQ(sections["bodies"].second, static_cast<std::uint64_t>(sim.bodies().size()));
 }

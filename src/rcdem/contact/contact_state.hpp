@@ -2,9 +2,11 @@
 // What the contact loop keeps between steps (the history of every local point, the contact
 // normals) and what it hands to the gather (one force and two torques per contact, and the
 // contact's energy terms), all as flat arrays.
+#include <string>
 #include <vector>
 
 #include "rcdem/contact/local_point_records.hpp"
+#include "rcdem/core/archive.hpp"
 #include "rcdem/core/types.hpp"
 #include "rcdem/state/contact_network.hpp"
 
@@ -51,6 +53,15 @@ struct ContactState {
     for (Index m = net.point_begin[c]; m < net.point_begin[c + 1]; ++m)
       e += law.elastic_energy(net.constants[m], point[m]);
     return e;
+  }
+
+  // The checkpoint's sections `name` (per contact) and `name`.points (core/archive.hpp).
+  template <class Archive, class Self>
+  static void serialize(Archive& ar, const std::string& name, Self& c) {
+    ar.table(name, c.normal.size(), column(c.normal), column(c.tangent), column(c.force_b),
+             column(c.torque_b), column(c.torque_a), column(c.dissipated_damage),
+             column(c.dissipated_friction));
+    ar.table(name + ".points", c.point.records.size(), column(c.point.records));
   }
 
   void init(const ContactNetwork& net, const std::vector<Vec3>& positions,

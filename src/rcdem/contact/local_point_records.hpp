@@ -49,6 +49,22 @@ struct alignas(64) LocalPointRecord {
 };
 static_assert(sizeof(LocalPointRecord) == 128, "a record is two cache lines");
 
+// A point's history as checkpoint columns (core/archive.hpp), in this order; its position and
+// constants come with the regenerated specimen.
+template <class Record, class R>
+requires std::same_as<std::remove_const_t<R>, LocalPointRecord>
+void archive_fields(Record& r, R& p) {
+  r.put(p.fn);
+  r.put(p.fs1);
+  r.put(p.fs2);
+  r.put(p.un);
+  r.put(p.us1);
+  r.put(p.us2);
+  r.put(p.un_max);
+  r.put(p.us_max_sq);
+  r.put(p.damage);
+}
+
 // The damage of every point, read in place (outputs, counters).
 struct PointDamage {
   const LocalPointRecord* records;
@@ -83,30 +99,28 @@ struct LocalPointRecords {
     return s;
   }
 
-  // The nine history values of point m, in the checkpoint's order (fn, fs1, fs2, un, us1, us2,
-  // un_max, us_max_sq, damage), each passed to f by reference.
+  // The nine history values of point m, in the checkpoint's order (archive_fields below), each
+  // passed to f by reference.
   template <typename F>
   void for_each_history(Index m, F&& f) {
-    for_each_history_of(records[static_cast<std::size_t>(m)], f);
+    Each<F> r{f};
+    archive_fields(r, records[static_cast<std::size_t>(m)]);
   }
   template <typename F>
   void for_each_history(Index m, F&& f) const {
-    for_each_history_of(records[static_cast<std::size_t>(m)], f);
+    Each<F> r{f};
+    archive_fields(r, records[static_cast<std::size_t>(m)]);
   }
 
  private:
-  template <typename R, typename F>
-  static void for_each_history_of(R& r, F& f) {
-    f(r.fn);
-    f(r.fs1);
-    f(r.fs2);
-    f(r.un);
-    f(r.us1);
-    f(r.us2);
-    f(r.un_max);
-    f(r.us_max_sq);
-    f(r.damage);
-  }
+  template <typename F>
+  struct Each {
+    F& f;
+    template <typename T>
+    void put(T& v) {
+      f(v);
+    }
+  };
 };
 
 }  // namespace rcdem

@@ -17,6 +17,9 @@
 // material points of A and B that met at the node at t = 0 and in a node frame carried half-way
 // between A and B. Rigid motions of the pair, however large, give exactly no increment (summing
 // velocity x dt would drift), and nothing needs the bodies' velocities.
+#include <concepts>
+#include <type_traits>
+
 #include "rcdem/core/types.hpp"
 #include "rcdem/reinforcement/rigid_cylinder.hpp"
 #include "rcdem/state/bodies.hpp"
@@ -86,6 +89,31 @@ struct NodeForces {
   Vec3 axis = Vec3::Zero();      // (8)
   Real dissipated = 0;           // plastic work in this update [J], f_y A |plastic increment|
 };
+
+// A node's columns in the checkpoint (core/archive.hpp), in this order.
+template <class Record, class S>
+requires std::same_as<std::remove_const_t<S>, NodeState>
+void archive_fields(Record& r, S& n) {
+  r.put(n.axial_force);
+  r.put(n.shear_force);
+  r.put(n.bending_moment);
+  r.put(n.twisting_moment);
+  r.put(n.plastic_elongation);
+  r.put(n.yielded);
+  r.put(n.displacement);
+  r.put(n.rotation);
+}
+template <class Record, class F>
+requires std::same_as<std::remove_const_t<F>, NodeForces>
+void archive_fields(Record& r, F& f) {
+  r.put(f.force_a);
+  r.put(f.torque_a);
+  r.put(f.force_b);
+  r.put(f.torque_b);
+  r.put(f.position);
+  r.put(f.axis);
+  r.put(f.dissipated);
+}
 
 // (7)-(8) for cylinders at x_a, q_a and x_b, q_b.
 NodeGeometry node_geometry(const InteractionNode& node, const Vec3& x_a, const Quat& q_a,

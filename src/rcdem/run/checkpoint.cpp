@@ -15,13 +15,15 @@
 #include "rcdem/core/build_info.hpp"
 #include "rcdem/core/error.hpp"
 #include "rcdem/io/atomic_file.hpp"
+#include "rcdem/run/checkpoint_archive.hpp"
 #include "rcdem/run/crack_record.hpp"
 #include "rcdem/run/run_output.hpp"
-#include "rcdem/solver/simulation.hpp"
+#include "rcdem/solver/simulation_archive.hpp"
 
 namespace rcdem::io {
 
 namespace fs = std::filesystem;
+using namespace checkpoint_detail;
 
 // ---------------------------------------------------------------------------------------------
 // Checksums.
@@ -41,15 +43,6 @@ struct Crc32Tables {
   }
 };
 constexpr Crc32Tables kCrc{};
-
-std::uint32_t load_le32(const unsigned char* p) {
-  return static_cast<std::uint32_t>(p[0]) | static_cast<std::uint32_t>(p[1]) << 8 |
-         static_cast<std::uint32_t>(p[2]) << 16 | static_cast<std::uint32_t>(p[3]) << 24;
-}
-std::uint64_t load_le64(const unsigned char* p) {
-  return static_cast<std::uint64_t>(load_le32(p)) | static_cast<std::uint64_t>(load_le32(p + 4))
-                                                        << 32;
-}
 
 }  // namespace
 
@@ -78,513 +71,82 @@ std::uint64_t fnv1a64(const void* data, std::size_t size, std::uint64_t h) {
   return h;
 }
 
-// ---------------------------------------------------------------------------------------------
-// Little-endian encoding and the archives that walk the state (one walk for saving and loading,
-// so the two cannot disagree on the layout).
-
 namespace {
 
 constexpr std::uint32_t kByteOrderMark = 0x01020304U;
-constexpr std::uint32_t kKindWords = 1;  // a table of 64-bit words (f64 or i64 by column)
-constexpr std::uint32_t kKindBytes = 2;  // raw bytes (text, flags)
 // magic 8, version 4, byte-order mark 4, file size 8, step 8, time 8, scenario hash 8, specimen
 // fingerprint 8, section count 4, writer length 4.
 constexpr std::size_t kFixedHeader = 64;
 constexpr std::size_t kTrailer = 4;
 
-struct Out {
-  std::string buf;
-  void u32(std::uint32_t v) {
-    for (int k = 0; k < 4; ++k) buf.push_back(static_cast<char>((v >> (8 * k)) & 0xFFU));
+// The state, part by part, each part's sections written by its own serialize() (docs/checkpoint.md
+// lists them in this order).
+template <class Archive, class Parts>
+void walk(Archive& ar, const Parts& p) {
+  if constexpr (Archive::loading) {
+    Simulation::serialize(ar, *p.sim);
+    if (p.history) History::serialize(ar, *p.history);
+    if (p.snapshots) SnapshotWriter::serialize(ar, *p.snapshots);
+    if (p.cracks) CrackRecord::serialize(ar, *p.cracks);
+    if (p.loop) LoopState::serialize(ar, *p.loop);
+  } else {
+    Simulation::serialize(ar, static_cast<const Simulation&>(*p.sim));
+    if (p.history) History::serialize(ar, static_cast<const History&>(*p.history));
+    if (p.snapshots)
+      SnapshotWriter::serialize(ar, static_cast<const SnapshotWriter&>(*p.snapshots));
+    if (p.cracks) CrackRecord::serialize(ar, static_cast<const CrackRecord&>(*p.cracks));
+    if (p.loop) LoopState::serialize(ar, static_cast<const LoopState&>(*p.loop));
   }
-  void u64(std::uint64_t v) {
-    if constexpr (std::endian::native == std::endian::little) {
-      char b[8];
-      std::memcpy(b, &v, 8);
-      buf.append(b, 8);
-    } else {
-      for (int k = 0; k < 8; ++k) buf.push_back(static_cast<char>((v >> (8 * k)) & 0xFFU));
-    }
-  }
-  void f64(double v) { u64(std::bit_cast<std::uint64_t>(v)); }
-  void bytes(const void* p, std::size_t n) { buf.append(static_cast<const char*>(p), n); }
-  void put_u32_at(std::size_t at, std::uint32_t v) {
-    for (int k = 0; k < 4; ++k) buf[at + k] = static_cast<char>((v >> (8 * k)) & 0xFFU);
-  }
-  void put_u64_at(std::size_t at, std::uint64_t v) {
-    for (int k = 0; k < 8; ++k) buf[at + k] = static_cast<char>((v >> (8 * k)) & 0xFFU);
-  }
-};
-
-// One record of a table, written.
-struct SaveRecord {
-  Out& o;
-  std::uint32_t words = 0;
-  void f(double v) {
-    o.f64(v);
-    ++words;
-  }
-  void i(std::int64_t v) {
-    o.u64(static_cast<std::uint64_t>(v));
-    ++words;
-  }
-  void b(bool v) { i(v ? 1 : 0); }
-  void u8(std::uint8_t v) { i(v); }
-  void v(const Vec3& x) {
-    f(x.x());
-    f(x.y());
-    f(x.z());
-  }
-  void q(const Quat& x) {
-    f(x.x());
-    f(x.y());
-    f(x.z());
-    f(x.w());
-  }
-};
-
-// One record of a table, read.
-struct LoadRecord {
-  const unsigned char* p;
-  std::uint64_t next() {
-    const std::uint64_t w = load_le64(p);
-    p += 8;
-    return w;
-  }
-  void f(double& v) { v = std::bit_cast<double>(next()); }
-  void i(std::int64_t& v) { v = static_cast<std::int64_t>(next()); }
-  void b(bool& v) { v = next() != 0; }
-  void u8(std::uint8_t& v) { v = static_cast<std::uint8_t>(next()); }
-  void v(Vec3& x) {
-    f(x.x());
-    f(x.y());
-    f(x.z());
-  }
-  void q(Quat& x) {
-    f(x.x());
-    f(x.y());
-    f(x.z());
-    f(x.w());
-  }
-};
-
-class Saver {
- public:
-  static constexpr bool loading = false;
-  explicit Saver(Out& o) : o_(o) {}
-  std::uint32_t sections() const { return sections_; }
-
-  // n records of `width` words: fn(record, i).
-  template <typename Fn>
-  void table(const std::string& name, std::size_t n, std::uint32_t width, Fn&& fn) {
-    header(name, kKindWords, width, n);
-    for (std::size_t i = 0; i < n; ++i) {
-      SaveRecord r{o_};
-      fn(r, i);
-      if (r.words != width)
-        throw std::logic_error(
-            fmt::format("checkpoint section '{}': {} words, declared {}", name, r.words, width));
-    }
-  }
-  // A vector whose length the checkpoint sets: fn(record, element).
-  template <typename Vec, typename Fn>
-  void list(const std::string& name, const Vec& v, std::uint32_t width, Fn&& fn) {
-    table(name, v.size(), width, [&](SaveRecord& r, std::size_t i) { fn(r, v[i]); });
-  }
-  template <typename Fn>
-  void record(const std::string& name, std::uint32_t width, Fn&& fn) {
-    table(name, 1, width, [&](SaveRecord& r, std::size_t) { fn(r); });
-  }
-  void text(const std::string& name, const std::string& s) {
-    header(name, kKindBytes, 1, s.size());
-    o_.bytes(s.data(), s.size());
-  }
-  // Text that must equal the restoring side's (e.g. the history's columns).
-  void expect_text(const std::string& name, const std::string& s) { text(name, s); }
-  void bytes(const std::string& name, const std::vector<std::uint8_t>& v) {
-    header(name, kKindBytes, 1, v.size());
-    o_.bytes(v.data(), v.size());
-  }
-
- private:
-  void header(const std::string& name, std::uint32_t kind, std::uint32_t width, std::size_t n) {
-    o_.u32(static_cast<std::uint32_t>(name.size()));
-    o_.bytes(name.data(), name.size());
-    o_.u32(kind);
-    o_.u32(width);
-    o_.u64(n);
-    ++sections_;
-  }
-  Out& o_;
-  std::uint32_t sections_ = 0;
-};
-
-struct Section {
-  std::uint32_t kind = 0, width = 0;
-  std::uint64_t count = 0;
-  std::size_t offset = 0;
-};
-
-// A whole file in memory, its framing checked.
-struct Parsed {
-  std::string data;
-  CheckpointHeader header;
-  std::map<std::string, Section> sections;
-};
-
-// Thrown inside parsing and restoring; turned into "checkpoint 'FILE' rejected: REASON".
-struct Reject {
-  std::string reason;
-};
-
-class Loader {
- public:
-  static constexpr bool loading = true;
-  Loader(const Parsed& f, bool apply) : f_(f), apply_(apply) {}
-  bool applying() const { return apply_; }
-
-  template <typename Fn>
-  void table(const std::string& name, std::size_t n, std::uint32_t width, Fn&& fn) {
-    const Section& s = find(name, kKindWords);
-    if (s.width != width || s.count != n)
-      throw Reject{fmt::format(
-          "section '{}' holds {} records of {} words; this specimen needs {} of {} (a different "
-          "specimen or format)",
-          name, s.count, s.width, n, width)};
-    if (!apply_) return;
-    LoadRecord r{reinterpret_cast<const unsigned char*>(f_.data.data()) + s.offset};
-    for (std::size_t i = 0; i < n; ++i) fn(r, i);
-  }
-  template <typename Vec, typename Fn>
-  void list(const std::string& name, Vec& v, std::uint32_t width, Fn&& fn) {
-    const Section& s = find(name, kKindWords);
-    if (s.width != width)
-      throw Reject{
-          fmt::format("section '{}' has records of {} words, expected {}", name, s.width, width)};
-    if (!apply_) return;
-    v.assign(static_cast<std::size_t>(s.count), typename Vec::value_type{});
-    LoadRecord r{reinterpret_cast<const unsigned char*>(f_.data.data()) + s.offset};
-    for (auto& e : v) fn(r, e);
-  }
-  template <typename Fn>
-  void record(const std::string& name, std::uint32_t width, Fn&& fn) {
-    table(name, 1, width, [&](LoadRecord& r, std::size_t) { fn(r); });
-  }
-  void text(const std::string& name, std::string& s) {
-    const Section& sec = find(name, kKindBytes);
-    if (apply_) s.assign(f_.data.data() + sec.offset, static_cast<std::size_t>(sec.count));
-  }
-  void expect_text(const std::string& name, const std::string& expected) {
-    const Section& sec = find(name, kKindBytes);
-    if (std::string_view(f_.data.data() + sec.offset, static_cast<std::size_t>(sec.count)) !=
-        expected)
-      throw Reject{fmt::format("section '{}' differs from this run's ('{}' expected)", name,
-                               expected.substr(0, 200))};
-  }
-  void bytes(const std::string& name, std::vector<std::uint8_t>& v) {
-    const Section& sec = find(name, kKindBytes);
-    if (sec.count != v.size())
-      throw Reject{
-          fmt::format("section '{}' holds {} bytes, expected {}", name, sec.count, v.size())};
-    if (apply_ && !v.empty()) std::memcpy(v.data(), f_.data.data() + sec.offset, v.size());
-  }
-
- private:
-  const Section& find(const std::string& name, std::uint32_t kind) const {
-    const auto it = f_.sections.find(name);
-    if (it == f_.sections.end()) throw Reject{fmt::format("section '{}' is missing", name)};
-    if (it->second.kind != kind)
-      throw Reject{
-          fmt::format("section '{}' has kind {}, expected {}", name, it->second.kind, kind)};
-    return it->second;
-  }
-  const Parsed& f_;
-  bool apply_;
-};
-
-std::string join(const std::vector<std::string>& v, char sep) {
-  std::string s;
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    if (i) s += sep;
-    s += v[i];
-  }
-  return s;
-}
-
-std::vector<std::string> split(const std::string& s, char sep) {
-  std::vector<std::string> out;
-  if (s.empty()) return out;
-  std::size_t start = 0;
-  for (;;) {
-    const std::size_t end = s.find(sep, start);
-    out.push_back(s.substr(start, end == std::string::npos ? std::string::npos : end - start));
-    if (end == std::string::npos) break;
-    start = end + 1;
-  }
-  return out;
 }
 
 }  // namespace
 
-// ---------------------------------------------------------------------------------------------
-// The state, section by section (docs/checkpoint.md lists the same).
-
-struct CheckpointAccess {
-  template <typename R, typename P>
-  static void point(R& r, P& p) {  // LocalPointState: 11 words
-    r.f(p.fn);
-    r.v(p.fs);
-    r.f(p.un);
-    r.v(p.us);
-    r.f(p.un_max);
-    r.f(p.us_max_sq);
-    r.f(p.damage);
+std::uint64_t specimen_fingerprint(const Simulation& s) {
+  Out o;
+  const Specimen& sp = s.specimen();
+  const PlateContacts& pc = s.plate_contacts();
+  const auto counts = {s.bodies().size(),
+                       s.concrete_count(),
+                       sp.contacts.contact_count(),
+                       sp.contacts.point_count(),
+                       pc.size(),
+                       static_cast<Index>(s.nodes().size()),
+                       static_cast<Index>(s.interface_contacts().size()),
+                       static_cast<Index>(s.pulled_bars().size())};
+  for (const Index c : counts) o.u64(static_cast<std::uint64_t>(c));
+  SaveRecord r{o};
+  const Bodies& b = s.bodies();
+  for (Index i = 0; i < b.size(); ++i) {
+    r.put(b.position0[i]);
+    r.put(b.orientation0[i]);
+    r.put(b.mass[i]);
+    r.put(b.inertia[i]);
+    r.put(b.radius[i]);
   }
-
-  template <typename Ar, typename C>
-  static void contact_state(Ar& ar, const std::string& name, C& c) {
-    ar.table(name, c.normal.size(), 17, [&](auto& r, std::size_t i) {
-      r.v(c.normal[i]);
-      r.v(c.tangent[i]);
-      r.v(c.force_b[i]);
-      r.v(c.torque_b[i]);
-      r.v(c.torque_a[i]);
-      r.f(c.dissipated_damage[i]);
-      r.f(c.dissipated_friction[i]);
-    });
-    ar.table(name + ".points", static_cast<std::size_t>(c.point.size()), 9,
-             [&](auto& r, std::size_t i) {
-               const auto m = static_cast<Index>(i);
-               c.point.for_each_history(m, [&](auto& v) { r.f(v); });
-             });
-  }
-
-  template <typename Ar, typename S>
-  static void simulation(Ar& ar, S& s) {
-    auto& b = s.bodies_;
-    const std::size_t nb = b.position.size();
-    ar.table("bodies", nb, 22, [&](auto& r, std::size_t i) {
-      r.v(b.position[i]);
-      r.v(b.velocity[i]);
-      r.v(b.angular_velocity[i]);
-      r.q(b.orientation[i]);
-      r.v(b.angular_momentum[i]);
-      r.v(b.force[i]);
-      r.v(b.torque[i]);
-    });
-    ar.table("bodies.step", nb, 3, [&](auto& r, std::size_t i) {
-      r.f(s.body_damping_work_[i]);
-      r.f(s.body_kinetic_[i]);
-      r.i(s.body_jumped_[i]);
-    });
-    contact_state(ar, "contacts", s.contacts_);
-    for (std::size_t k = 0; k < s.interface_states_.size(); ++k)
-      contact_state(ar, fmt::format("interface.{}", k), s.interface_states_[k]);
-    ar.table("nodes", s.node_states_.size(), 35, [&](auto& r, std::size_t j) {
-      auto& n = s.node_states_[j];
-      r.f(n.axial_force);
-      r.v(n.shear_force);
-      r.v(n.bending_moment);
-      r.f(n.twisting_moment);
-      r.f(n.plastic_elongation);
-      r.b(n.yielded);
-      r.v(n.displacement);
-      r.v(n.rotation);
-      auto& f = s.node_forces_[j];
-      r.v(f.force_a);
-      r.v(f.torque_a);
-      r.v(f.force_b);
-      r.v(f.torque_b);
-      r.v(f.position);
-      r.v(f.axis);
-      r.f(f.dissipated);
-    });
-    ar.table("plates", s.plates_.size(), 8, [&](auto& r, std::size_t p) {
-      auto& pl = s.plates_[p];
-      r.f(pl.displacement);
-      r.v(pl.force);
-      r.f(pl.work);
-      r.i(pl.contacts_active);
-      r.f(s.plate_force_prev_[p]);
-      r.f(s.plate_displacement_prev_[p]);
-    });
-    auto& pc = s.plate_contacts_;
-    ar.table("plate_contacts", pc.state.size(), 21, [&](auto& r, std::size_t k) {
-      point(r, pc.state[k]);
-      r.v(pc.force[k]);
-      r.v(pc.torque[k]);
-      r.f(pc.strain_energy[k]);
-      r.f(pc.dissipated_friction[k]);
-      r.u8(pc.active[k]);
-      r.f(pc.entry_opening[k]);
-    });
-    ar.table("pulled_bars", s.pulled_.size(), 7, [&](auto& r, std::size_t k) {
-      auto& pb = s.pulled_[k];
-      r.f(pb.displacement);
-      r.v(pb.force);
-      r.f(pb.work);
-      r.f(pb.last_step);
-      r.f(s.pulled_force_prev_[k]);
-    });
-    ar.record("solver", 11, [&](auto& r) {
-      r.f(s.time_);
-      r.i(s.steps_);
-      r.f(s.dt_);
-      r.f(s.damping_);
-      auto& e = s.energy_;
-      r.f(e.external_work);
-      r.f(e.strain);
-      r.f(e.kinetic);
-      r.f(e.damage);
-      r.f(e.friction);
-      r.f(e.damping);
-      r.f(e.plastic);
-    });
-    // loading.adaptive_rate's controller (solver/loading_rate.hpp); 1, 0, 0 when off.
-    ar.record("loading_rate", 3, [&](auto& r) {
-      r.f(s.loading_rate_.st_.factor);
-      r.f(s.loading_rate_.st_.work);
-      r.f(s.loading_rate_.st_.damage);
-    });
-  }
-
-  template <typename Ar, typename H>
-  static void history(Ar& ar, H& h) {
-    ar.expect_text("history.columns", join(h.columns_, ','));
-    const auto width = static_cast<std::uint32_t>(h.columns_.size());
-    ar.list("history", h.rows_, width, [&](auto& r, auto& row) {
-      if constexpr (Ar::loading) row.resize(width);
-      for (std::size_t j = 0; j < width; ++j) r.f(row[j]);
-    });
-  }
-
-  template <typename Ar, typename W>
-  static void snapshots(Ar& ar, W& w) {
-    const std::pair<const char*, decltype(&w.particle_series_)> series[] = {
-        {"particles", &w.particle_series_}, {"facets", &w.facet_series_}, {"bars", &w.bar_series_}};
-    for (const auto& [kind, list] : series) {
-      const std::string name = fmt::format("snapshots.{}", kind);
-      ar.list(name, *list, 1, [](auto& r, auto& e) { r.f(e.first); });
-      if constexpr (Ar::loading) {
-        std::string names;
-        ar.text(name + ".files", names);
-        if (ar.applying()) {
-          const std::vector<std::string> files = split(names, '\n');
-          if (files.size() != list->size())
-            throw Reject{fmt::format("section '{}.files' lists {} files for {} times", name,
-                                     files.size(), list->size())};
-          for (std::size_t k = 0; k < files.size(); ++k) (*list)[k].second = files[k];
-        }
-      } else {
-        std::vector<std::string> files;
-        for (const auto& e : *list) files.push_back(e.second);
-        ar.text(name + ".files", join(files, '\n'));
-      }
+  const auto network = [&](const ContactNetwork& nw) {
+    o.u64(static_cast<std::uint64_t>(nw.point_count()));
+    for (Index c = 0; c < nw.contact_count(); ++c) {
+      r.put(nw.particle_a[c]);
+      r.put(nw.particle_b[c]);
+      r.put(nw.point_begin[c]);
     }
-  }
-
-  template <typename Ar, typename C>
-  static void cracks(Ar& ar, C& c) {
-    ar.bytes("cracks.broken", c.broken_);
-    ar.list("cracks", c.rows_, 7, [](auto& r, auto& row) {
-      r.v(row.position);
-      r.f(row.area);
-      r.i(row.step);
-      r.f(row.deflection);
-      r.f(row.load);
-    });
-  }
-
-  template <typename Ar, typename L>
-  static void loop(Ar& ar, L& l) {
-    ar.record("run", 8, [&](auto& r) {
-      r.f(l.peak);
-      r.f(l.peak_load);
-      r.f(l.displacement_at_peak);
-      r.f(l.kinetic_over_strain_at_peak);
-      r.f(l.wall_seconds);
-      r.f(l.loop_seconds);
-      r.i(l.history_every);
-      r.i(l.snapshot_every);
-    });
-  }
-
-  template <typename Ar>
-  static void save_parts(Ar& ar, const CheckpointParts& p) {
-    // Condensed contacts' histories as if visited (elastic_condensation.hpp): what the file holds
-    // does not depend on the condensation, and a restart needs no kinematics of the last step.
-    p.sim->catch_up_condensed_points();
-    simulation(ar, static_cast<const Simulation&>(*p.sim));
-    if (p.history) history(ar, static_cast<const History&>(*p.history));
-    if (p.snapshots) snapshots(ar, static_cast<const SnapshotWriter&>(*p.snapshots));
-    if (p.cracks) cracks(ar, static_cast<const CrackRecord&>(*p.cracks));
-    if (p.loop) loop(ar, static_cast<const LoopState&>(*p.loop));
-  }
-  // After the state is in: which contacts are intact follows from the points' damage, and none is
-  // condensed (their histories were complete when saved).
-  static void after_restore(Simulation& s) {
-    if (!s.condensation_.sums.empty())
-      s.condensation_.reset_flags(s.specimen_.contacts, s.contacts_.point.damage());
-  }
-  template <typename Ar>
-  static void load_parts(Ar& ar, const CheckpointParts& p) {
-    simulation(ar, *p.sim);
-    if (p.history) history(ar, *p.history);
-    if (p.snapshots) snapshots(ar, *p.snapshots);
-    if (p.cracks) cracks(ar, *p.cracks);
-    if (p.loop) loop(ar, *p.loop);
-  }
-
-  static std::uint64_t fingerprint(const Simulation& s) {
-    Out o;
-    const auto counts = {static_cast<Index>(s.bodies_.size()),
-                         s.concrete_count(),
-                         s.specimen_.contacts.contact_count(),
-                         s.specimen_.contacts.point_count(),
-                         s.plate_contacts_.size(),
-                         static_cast<Index>(s.nodes_.size()),
-                         static_cast<Index>(s.interface_states_.size()),
-                         static_cast<Index>(s.pulled_.size())};
-    for (const Index c : counts) o.u64(static_cast<std::uint64_t>(c));
-    SaveRecord r{o};
-    const Bodies& b = s.bodies_;
-    for (Index i = 0; i < b.size(); ++i) {
-      r.v(b.position0[i]);
-      r.q(b.orientation0[i]);
-      r.f(b.mass[i]);
-      r.v(b.inertia[i]);
-      r.f(b.radius[i]);
+    for (Index m = 0; m < nw.point_count(); ++m) {
+      r.put(nw.point_position0[m]);
+      r.put(nw.constants[m].kn);
+      r.put(nw.constants[m].ks);
+      r.put(nw.constants[m].fn_max);
+      r.put(nw.constants[m].c_max);
     }
-    const auto network = [&](const ContactNetwork& nw) {
-      o.u64(static_cast<std::uint64_t>(nw.point_count()));
-      for (Index c = 0; c < nw.contact_count(); ++c) {
-        r.i(nw.particle_a[c]);
-        r.i(nw.particle_b[c]);
-        r.i(nw.point_begin[c]);
-      }
-      for (Index m = 0; m < nw.point_count(); ++m) {
-        r.v(nw.point_position0[m]);
-        r.f(nw.constants[m].kn);
-        r.f(nw.constants[m].ks);
-        r.f(nw.constants[m].fn_max);
-        r.f(nw.constants[m].c_max);
-      }
-    };
-    network(s.specimen_.contacts);
-    for (const auto& ic : s.specimen_.interfaces) network(ic.net);
-    const PlateContacts& pc = s.plate_contacts_;
-    for (Index k = 0; k < pc.size(); ++k) {
-      r.i(pc.particle[k]);
-      r.v(pc.point0[k]);
-      r.f(pc.constants[k].kn);
-      r.f(pc.constants[k].ks);
-    }
-    return fnv1a64(o.buf);
+  };
+  network(sp.contacts);
+  for (const auto& ic : sp.interfaces) network(ic.net);
+  for (Index k = 0; k < pc.size(); ++k) {
+    r.put(pc.particle[k]);
+    r.put(pc.point0[k]);
+    r.put(pc.constants[k].kn);
+    r.put(pc.constants[k].ks);
   }
-};
-
-std::uint64_t specimen_fingerprint(const Simulation& sim) {
-  return CheckpointAccess::fingerprint(sim);
+  return fnv1a64(o.buf);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -608,8 +170,11 @@ std::string encode_checkpoint(const CheckpointParts& parts, std::uint64_t scenar
   const std::string writer = fmt::format("rcdem {} ({})", build_version(), build_git_hash());
   o.u32(static_cast<std::uint32_t>(writer.size()));
   o.bytes(writer.data(), writer.size());
+  // Condensed contacts' histories as if visited (elastic_condensation.hpp): what the file holds
+  // does not depend on the condensation, and a restart needs no kinematics of the last step.
+  parts.sim->catch_up_condensed_points();
   Saver saver(o);
-  CheckpointAccess::save_parts(saver, parts);
+  walk(saver, parts);
   o.put_u32_at(sections_at, saver.sections());
   o.put_u64_at(size_at, o.buf.size() + kTrailer);
   o.u32(crc32(o.buf.data(), o.buf.size()));
@@ -761,10 +326,9 @@ CheckpointHeader restore_checkpoint(const fs::path& file, const CheckpointParts&
           "the generator gives a different specimen (another rcdem version?)",
           f.header.specimen_fingerprint, fp)};
     Loader check(f, false);
-    CheckpointAccess::load_parts(check, parts);
+    walk(check, parts);
     Loader apply(f, true);
-    CheckpointAccess::load_parts(apply, parts);
-    CheckpointAccess::after_restore(*parts.sim);
+    walk(apply, parts);
     return f.header;
   } catch (const Reject& r) {
     throw Error(rejected(file, r.reason));

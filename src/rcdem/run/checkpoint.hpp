@@ -51,6 +51,13 @@ struct LoopState {
   double wall_seconds = 0.0;  // wall time of the sessions so far, up to this checkpoint
   double loop_seconds = 0.0;  // the part of it spent stepping
   std::int64_t history_every = 0, snapshot_every = 0;  // spacing (checked on restore)
+
+  // The checkpoint's "run" record (core/archive.hpp).
+  template <class Archive, class Self>
+  static void serialize(Archive& ar, Self& l) {
+    ar.record("run", l.peak, l.peak_load, l.displacement_at_peak, l.kinetic_over_strain_at_peak,
+              l.wall_seconds, l.loop_seconds, l.history_every, l.snapshot_every);
+  }
 };
 
 // What a checkpoint holds: the simulation always; the run loop's parts where given.

@@ -15,8 +15,6 @@ class Simulation;
 
 namespace rcdem::io {
 
-struct CheckpointAccess;  // run/checkpoint.cpp: saves and restores the record
-
 class CrackRecord {
  public:
   explicit CrackRecord(const Simulation& sim);
@@ -34,8 +32,15 @@ class CrackRecord {
 
   std::size_t size() const { return rows_.size(); }
 
+  // The checkpoint's "cracks.broken" flags and "cracks" rows (core/archive.hpp).
+  template <class Archive, class Self>
+  static void serialize(Archive& ar, Self& c) {
+    ar.bytes("cracks.broken", c.broken_);
+    ar.list("cracks", c.rows_, &Row::position, &Row::area, &Row::step, &Row::deflection,
+            &Row::load);
+  }
+
  private:
-  friend struct CheckpointAccess;
   struct Row {
     Vec3 position;
     Real area;

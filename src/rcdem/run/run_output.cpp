@@ -158,6 +158,12 @@ void SnapshotWriter::write(const Simulation& sim) {
   emit(g, "facets", stamp, sim.time(), enc, facet_series_);
 }
 
+std::string History::join_columns(const std::vector<std::string>& columns) {
+  std::string s;
+  for (std::size_t i = 0; i < columns.size(); ++i) (s += i ? "," : "") += columns[i];
+  return s;
+}
+
 History::History(const Simulation& sim, std::string control)
     : control_(std::move(control)), gauges_(sim.specimen()) {
   columns_ = {"step", "time_s"};

@@ -11,15 +11,22 @@
 
 namespace rcdem::io {
 
-struct CheckpointAccess;  // run/checkpoint.cpp: saves and restores the series and rows
-
 class SnapshotWriter {
  public:
   SnapshotWriter(std::filesystem::path dir, bool binary, bool facets);
   void write(const Simulation& sim);  // snapshots/particles_NNNNNN.vtu, facets_NNNNNN.vtu, *.pvd
 
+  // The checkpoint's "snapshots.<kind>" series: each snapshot's time, and its file names as text
+  // (core/archive.hpp).
+  template <class Archive, class Self>
+  static void serialize(Archive& ar, Self& w) {
+    using Entry = std::pair<double, std::string>;
+    ar.series("snapshots.particles", w.particle_series_, &Entry::first, &Entry::second);
+    ar.series("snapshots.facets", w.facet_series_, &Entry::first, &Entry::second);
+    ar.series("snapshots.bars", w.bar_series_, &Entry::first, &Entry::second);
+  }
+
  private:
-  friend struct CheckpointAccess;
   std::filesystem::path dir_;
   bool binary_, facets_;
   void write_bars(const Simulation& sim, const std::string& stamp, VtuEncoding enc);
@@ -38,8 +45,15 @@ class History {
   const std::vector<std::vector<double>>& data() const { return rows_; }
   const StrainGauges& gauges() const { return gauges_; }
 
+  // The checkpoint's "history.columns" (which must equal this run's) and "history" rows.
+  template <class Archive, class Self>
+  static void serialize(Archive& ar, Self& h) {
+    ar.expect_text("history.columns", join_columns(h.columns_));
+    ar.rows("history", h.rows_, h.columns_.size());
+  }
+
  private:
-  friend struct CheckpointAccess;
+  static std::string join_columns(const std::vector<std::string>& columns);
   std::string control_;
   StrainGauges gauges_;
   bool bars_ = false;

@@ -22,10 +22,6 @@
 
 namespace rcdem {
 
-namespace io {
-struct CheckpointAccess;
-}
-
 class LoadingRate {
  public:
   static constexpr std::int64_t kCheckSteps = 20;
@@ -39,8 +35,13 @@ class LoadingRate {
   // After step `step` (of length dt) with the ledger as it stands.
   void update(std::int64_t step, Real dt, const Energy& ledger);
 
+  // The checkpoint's "loading_rate" (core/archive.hpp): the controller's memory; 1, 0, 0 when off.
+  template <class Archive, class Self>
+  static void serialize(Archive& ar, Self& l) {
+    ar.record("loading_rate", l.st_.factor, l.st_.work, l.st_.damage);
+  }
+
  private:
-  friend struct io::CheckpointAccess;  // saves and restores st_
   struct State {
     Real factor = 1.0;
     Real work = 0.0, damage = 0.0;  // the ledger's at the last check

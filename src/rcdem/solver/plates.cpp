@@ -179,4 +179,21 @@ void sum_plate_reactions(std::vector<Plate>& plates, const PlateContacts& pc) {
   }
 }
 
+PlateSet PlateSet::build(const std::vector<PlateSettings>& settings,
+                         const SpecimenGeometry& geometry, const BoundaryFaces& faces,
+                         const Bodies& bodies, const ContactParameters& params) {
+  PlateSet s;
+  s.plates = make_plates(settings, geometry);
+  s.contacts = make_plate_contacts(s.plates, faces, bodies, params);
+  s.force_prev.assign(s.plates.size(), 0.0);
+  s.displacement_prev.assign(s.plates.size(), 0.0);
+  return s;
+}
+
+const Plate* PlateSet::find(const std::string& name) const {
+  for (const auto& p : plates)
+    if (p.name == name) return &p;
+  return nullptr;
+}
+
 }  // namespace rcdem

@@ -12,6 +12,7 @@
 #include "rcdem/config/scenario.hpp"
 #include "rcdem/config/specimen_geometry.hpp"
 #include "rcdem/contact/laws/local_point_state.hpp"
+#include "rcdem/core/archive.hpp"
 #include "rcdem/core/types.hpp"
 #include "rcdem/state/bodies.hpp"
 #include "rcdem/state/contact_network.hpp"
@@ -58,6 +59,31 @@ struct PlateContacts {
   std::vector<Real> entry_opening;
 
   Index size() const { return static_cast<Index>(plate.size()); }
+};
+
+// The plates with their contacts, and what the ledger keeps of the last step (their works).
+struct PlateSet {
+  std::vector<Plate> plates;
+  PlateContacts contacts;
+  std::vector<Real> force_prev, displacement_prev;  // per plate, at the last step
+
+  static PlateSet build(const std::vector<PlateSettings>& settings,
+                        const SpecimenGeometry& geometry, const BoundaryFaces& faces,
+                        const Bodies& bodies, const ContactParameters& params);
+  const Plate* find(const std::string& name) const;
+
+  // The checkpoint's "plates" and "plate_contacts" (core/archive.hpp): what a step changes.
+  template <class Archive, class Self>
+  static void serialize(Archive& ar, Self& s) {
+    ar.table("plates", s.plates.size(), column(s.plates, &Plate::displacement),
+             column(s.plates, &Plate::force), column(s.plates, &Plate::work),
+             column(s.plates, &Plate::contacts_active), column(s.force_prev),
+             column(s.displacement_prev));
+    auto& pc = s.contacts;
+    ar.table("plate_contacts", pc.state.size(), column(pc.state), column(pc.force),
+             column(pc.torque), column(pc.strain_energy), column(pc.dissipated_friction),
+             column(pc.active), column(pc.entry_opening));
+  }
 };
 
 std::vector<Plate> make_plates(const std::vector<PlateSettings>& settings,

@@ -12,84 +12,39 @@
 #include "rcdem/solver/body_stiffness.hpp"
 #include "rcdem/solver/selective_mass_scaling.hpp"
 #include "rcdem/solver/sphere_update.hpp"
-#include "rcdem/tessellation/interface_network_builder.hpp"
 
 namespace rcdem {
 
-Simulation::Simulation(const Scenario& sc, Specimen specimen)
-    : specimen_(std::move(specimen)),
-      bodies_(bodies_from_particles(specimen_.particles, sc.solver.density, sc.solver.mass_scaling,
-                                    specimen_.concrete())),
-      law_(make_contact_law(sc.law, sc.contact)),
-      damping_(sc.solver.damping),
-      loading_rate_(sc.loading_rate) {
-  for (Vec3& inertia : bodies_.inertia) inertia *= sc.solver.particle_rotational_inertia_scaling;
-  // The bars' cylinders: exact mass and inertia (SPEC 7), principal frame z along the axis.
-  for (const Bar& bar : specimen_.bars)
+namespace {
+// The concrete particles as bodies, then the bars' cylinders: exact mass and inertia (SPEC 7),
+// principal frame z along the axis.
+Bodies make_bodies(const Scenario& sc, const Specimen& specimen) {
+  Bodies bodies = bodies_from_particles(specimen.particles, sc.solver.density,
+                                        sc.solver.mass_scaling, specimen.concrete());
+  for (Vec3& inertia : bodies.inertia) inertia *= sc.solver.particle_rotational_inertia_scaling;
+  for (const Bar& bar : specimen.bars)
     for (const auto& cyl : bar.cylinders) {
       CylinderInertia in = solid_cylinder_inertia(bar.diameter, cyl.length, bar.steel.density);
       in.principal_inertia *= sc.solver.bar_rotational_inertia_scaling;
-      add_body(bodies_, cyl.centre, sc.solver.mass_scaling * in.mass,
+      add_body(bodies, cyl.centre, sc.solver.mass_scaling * in.mass,
                sc.solver.mass_scaling * in.principal_inertia, orientation_for_axis(cyl.axis),
                0.5 * bar.diameter);
     }
-  // Interaction nodes, built with the cylinders' orientations at t = 0 as stored here (identity:
-  // rotations since t = 0).
-  Index first = specimen_.concrete();
-  for (std::size_t k = 0; k < specimen_.bars.size(); ++k) {
-    const Bar& bar = specimen_.bars[k];
-    const std::vector<Quat> reference(bar.cylinders.size(), Quat::Identity());
-    const std::vector<InteractionNode> nodes = make_bar_nodes(bar, reference);
-    for (std::size_t j = 0; j < nodes.size(); ++j) {
-      nodes_.push_back(nodes[j]);
-      node_refs_.push_back({first + bar.nodes[j][0], first + bar.nodes[j][1], static_cast<int>(k)});
-    }
-    first += static_cast<Index>(bar.cylinders.size());
-  }
-  // Pulled bars: their first cylinder is driven.
-  driven_.assign(static_cast<std::size_t>(bodies_.size()), -1);
-  {
-    Index body = specimen_.concrete();
-    for (std::size_t k = 0; k < specimen_.bars.size(); ++k) {
-      const BarSettings& bs = sc.bars[k];
-      if (bs.pull_velocity > 0.0) {
-        PulledBar pb;
-        pb.name = bs.name;
-        pb.body = body;
-        pb.direction = (bs.start - bs.end).normalized();
-        pb.speed = bs.pull_velocity;
-        pb.ramp_time = bs.pull_ramp_time;
-        driven_[static_cast<std::size_t>(body)] = static_cast<std::int64_t>(pulled_.size());
-        pulled_.push_back(pb);
-      }
-      body += static_cast<Index>(specimen_.bars[k].cylinders.size());
-    }
-    pulled_force_prev_.assign(pulled_.size(), 0.0);
-  }
-  node_states_.assign(nodes_.size(), NodeState{});
-  node_forces_.assign(nodes_.size(), NodeForces{});
-  // The interface contacts of each bar, with its law (paper 3: EL, NL-A, NL-B).
-  for (std::size_t k = 0; k < specimen_.interfaces.size(); ++k) {
-    const InterfaceContacts& ic = specimen_.interfaces[k];
-    std::vector<Vec3> axes(ic.anchor0.size());
-    for (std::size_t c = 0; c < axes.size(); ++c)
-      axes[c] = bodies_.orientation0[ic.net.particle_b[c]] * Vec3::UnitZ();
-    ContactState state;
-    state.init(ic.net, bodies_.position, &ic.anchor0, &axes);
-    interface_states_.push_back(std::move(state));
-    const BarSettings& bar = sc.bars[k];
-    interface_law_.push_back(
-        make_contact_law(bar.interface == InterfaceLaw::EL ? "EL" : bar.interface_softening,
-                         interface_parameters(sc.contact, bar), "bars.*.interface_softening"));
-  }
-  contacts_.init(specimen_.contacts, bodies_.position);
-  if (sc.solver.condense_elastic_contacts && condensable(law_))
-    condensation_ = ElasticCondensation::build(specimen_.contacts, bodies_.position0);
-  body_contacts_ = BodyContacts::build(specimen_.contacts, bodies_.size());
-  plates_ = make_plates(sc.plates, specimen_.geometry);
-  plate_contacts_ = make_plate_contacts(plates_, specimen_.boundary, bodies_, sc.contact);
-  plate_force_prev_.assign(plates_.size(), 0.0);
-  plate_displacement_prev_.assign(plates_.size(), 0.0);
+  return bodies;
+}
+}  // namespace
+
+Simulation::Simulation(const Scenario& sc, Specimen specimen)
+    : specimen_(std::move(specimen)),
+      bodies_(make_bodies(sc, specimen_)),
+      concrete_(ConcreteContacts::build(sc, specimen_.contacts, bodies_)),
+      bars_(BarSystem::build(sc, specimen_, bodies_)),
+      pulled_(PulledBars::build(sc, specimen_, bodies_.size())),
+      plates_(
+          PlateSet::build(sc.plates, specimen_.geometry, specimen_.boundary, bodies_, sc.contact)),
+      step_sums_(BodyStepSums::build(bodies_, pulled_.driven)),
+      damping_(sc.solver.damping),
+      loading_rate_(sc.loading_rate) {
   // The small networks' tasks: a few dozen items each (about 10-30 us of work at most).
   const auto add_tasks = [this](SmallTask::Kind kind, std::size_t bar, Index count, Index size) {
     for (Index begin = 0; begin < count; begin += size)
@@ -97,35 +52,19 @@ Simulation::Simulation(const Scenario& sc, Specimen specimen)
   };
   for (std::size_t k = 0; k < specimen_.interfaces.size(); ++k)
     add_tasks(SmallTask::kInterface, k, specimen_.interfaces[k].net.contact_count(), 64);
-  add_tasks(SmallTask::kPlates, 0, plate_contacts_.size(), 256);
-  add_tasks(SmallTask::kNodes, 0, static_cast<Index>(nodes_.size()), 64);
-  const auto n = static_cast<std::size_t>(bodies_.size());
-  body_damping_work_.assign(n, 0.0);
-  body_kinetic_.assign(n, 0.0);
-  body_jumped_.assign(n, 0);
-  // The concrete particles: the leading bodies with isotropic inertia that no bar drives.
-  spheres_ = 0;
-  while (spheres_ < bodies_.size() && driven_[static_cast<std::size_t>(spheres_)] < 0 &&
-         bodies_.inertia[spheres_].x() == bodies_.inertia[spheres_].y() &&
-         bodies_.inertia[spheres_].y() == bodies_.inertia[spheres_].z())
-    ++spheres_;
-  sphere_block_sums_.assign(static_cast<std::size_t>((spheres_ + kSphereBlock - 1) / kSphereBlock),
-                            SphereBlockSums{});
-  rotation_.assign(n, Eigen::Matrix3d::Identity());
-  rotation_prev_ = rotation_;
-  position_eval_ = bodies_.position;
-  position_prev_ = bodies_.position;
-  pose_.resize(bodies_.size());
+  add_tasks(SmallTask::kPlates, 0, plates_.contacts.size(), 256);
+  add_tasks(SmallTask::kNodes, 0, static_cast<Index>(bars_.nodes.size()), 64);
   compute_stable_time_step(sc.solver.added_mass_limit, sc.solver.estimate, sc.source.string());
-  dt_ = sc.solver.dt_safety * stable_dt_;
+  time_step_.dt = sc.solver.dt_safety * time_step_.stable;
   if (sc.solver.time_step > 0.0) {
     const Real most = max_dt_safety(sc.solver.estimate);
-    if (sc.solver.time_step > most * stable_dt_)
+    if (sc.solver.time_step > most * time_step_.stable)
       fail(
           "{}: key 'solver.time_step' ({:.4g} s) is above the stable limit: at most {} x the "
           "critical estimate {:.4g} s = {:.4g} s",
-          sc.source.string(), sc.solver.time_step, most, stable_dt_, most * stable_dt_);
-    dt_ = sc.solver.time_step;
+          sc.source.string(), sc.solver.time_step, most, time_step_.stable,
+          most * time_step_.stable);
+    time_step_.dt = sc.solver.time_step;
   }
 }
 
@@ -148,20 +87,20 @@ void Simulation::visit_springs(Visitor&& v) const {
     v.network(ic.net, std::move(n));
   }
   // Every plate contact, closed or not: the stiffest the plates can make the assembly.
-  for (Index j = 0; j < plate_contacts_.size(); ++j) {
-    const Index i = plate_contacts_.particle[j];
-    const LocalPointConstants& k = plate_contacts_.constants[j];
-    const Vec3 arm = plate_contacts_.point0[j] - bodies_.position0[i];
-    v.spring(-1, i, arm, arm, plates_[plate_contacts_.plate[j]].normal, k.kn, k.ks);
+  for (Index j = 0; j < plates_.contacts.size(); ++j) {
+    const Index i = plates_.contacts.particle[j];
+    const LocalPointConstants& k = plates_.contacts.constants[j];
+    const Vec3 arm = plates_.contacts.point0[j] - bodies_.position0[i];
+    v.spring(-1, i, arm, arm, plates_.plates[plates_.contacts.plate[j]].normal, k.kn, k.ks);
   }
   // Interaction nodes (9): k_a along the node's axis and k_t across it, at the node; k_b and
   // k_theta as rotational springs. The node's vectors are world vectors at t = 0.
-  for (std::size_t j = 0; j < nodes_.size(); ++j) {
-    const InteractionNode& node = nodes_[j];
+  for (std::size_t j = 0; j < bars_.nodes.size(); ++j) {
+    const InteractionNode& node = bars_.nodes[j];
     const Vec3 axis = unit(node.axis_a + node.axis_b);
     const Mat3 kr = node.k.bending * (Mat3::Identity() - axis * axis.transpose()) +
                     node.k.torsion * axis * axis.transpose();
-    const NodeRef& r = node_refs_[j];
+    const NodeRef& r = bars_.node_refs[j];
     v.spring(r.body_a, r.body_b, node.arm_a, node.arm_b, axis, node.k.axial, node.k.shear);
     v.rotational(r.body_a, r.body_b, kr);
   }
@@ -232,7 +171,7 @@ void Simulation::compute_stable_time_step(Real added_mass_limit, TimeStepEstimat
   static const char* const kWhat[] = {"rotation about body axis x", "rotation about body axis y",
                                       "rotation about body axis z"};
   static const char* const kCylinder[] = {"bending rotation", "bending rotation", "torsion"};
-  stable_dt_limit_ = fmt::format("{} {} ({})", cylinder ? "bar cylinder" : "particle", first,
+  time_step_.limit = fmt::format("{} {} ({})", cylinder ? "bar cylinder" : "particle", first,
                                  !l.rotation ? "translation"
                                  : cylinder  ? kCylinder[l.body_axis]
                                              : kWhat[l.body_axis]);
@@ -242,30 +181,33 @@ void Simulation::compute_stable_time_step(Real added_mass_limit, TimeStepEstimat
     fail(
         "{}: the stable time step {:.3g} s, set by {}, is below {:.0e} s: it is far too stiff "
         "for its mass; check contact.E_bar, bars.*.E, material.density and bars.*.density",
-        source, l.time_step, stable_dt_limit_, kMinimumTimeStep);
+        source, l.time_step, time_step_.limit, kMinimumTimeStep);
   // Selective mass scaling (solver/selective_mass_scaling.hpp): the bodies below a common target
   // made heavier, mass and inertia alike, which lifts each one's estimate to the target exactly.
-  mass_scaling_ = plan_selective_mass_scaling(steps, bodies_.mass, added_mass_limit);
+  time_step_.mass_scaling = plan_selective_mass_scaling(steps, bodies_.mass, added_mass_limit);
   for (Index i = 0; i < bodies_.size(); ++i) {
-    const Real f = mass_scaling_.factor[static_cast<std::size_t>(i)];
+    const Real f = time_step_.mass_scaling.factor[static_cast<std::size_t>(i)];
     bodies_.mass[i] *= f;
     bodies_.inertia[i] *= f;
   }
-  if (mass_scaling_.bodies_scaled > 0)
-    stable_dt_limit_ = fmt::format(
+  if (time_step_.mass_scaling.bodies_scaled > 0)
+    time_step_.limit = fmt::format(
         "selective mass scaling: {} bodies up to {:.3f}x heavier, +{:.3g}% mass; unscaled {:.4g} "
         "s, set by {}",
-        mass_scaling_.bodies_scaled, mass_scaling_.largest_factor,
-        100.0 * mass_scaling_.added_fraction(), mass_scaling_.unscaled_step, stable_dt_limit_);
-  stable_dt_ = mass_scaling_.time_step;
+        time_step_.mass_scaling.bodies_scaled, time_step_.mass_scaling.largest_factor,
+        100.0 * time_step_.mass_scaling.added_fraction(), time_step_.mass_scaling.unscaled_step,
+        time_step_.limit);
+  time_step_.stable = time_step_.mass_scaling.time_step;
   if (estimate == TimeStepEstimate::Assembled) {
     // The whole assembly's critical step, with the masses as scaled (critical_time_step.hpp).
     AssembledStiffness k(bodies_);
     visit_springs(AssemblyVisitor{k});
-    critical_ = assembled_critical_time_step(k, 1.0 / (stable_dt_ * stable_dt_));
-    stable_dt_limit_ = fmt::format("{}, x 1/sqrt(1 + damping {}); per-body estimate {:.4g} s ({})",
-                                   critical_.how(), damping_, stable_dt_, stable_dt_limit_);
-    stable_dt_ = damped_critical_time_step(critical_.time_step, damping_);
+    time_step_.critical =
+        assembled_critical_time_step(k, 1.0 / (time_step_.stable * time_step_.stable));
+    time_step_.limit =
+        fmt::format("{}, x 1/sqrt(1 + damping {}); per-body estimate {:.4g} s ({})",
+                    time_step_.critical.how(), damping_, time_step_.stable, time_step_.limit);
+    time_step_.stable = damped_critical_time_step(time_step_.critical.time_step, damping_);
   }
 }
 
@@ -278,103 +220,94 @@ ContactInputs Simulation::concrete_inputs(const std::vector<Vec3>& positions,
           bodies_.orientation0.data(),
           rotation.data(),
           nullptr,
-          dt_};
+          time_step_.dt};
 }
 
 void Simulation::catch_up_condensed_points() const {
   // The last evaluation's kinematics: its centres and orientation matrices, both kept until the
   // next step forms them anew.
-  if (!condensation_.any_condensed) return;
+  if (!concrete_.condensation.any_condensed) return;
   std::visit(
       [&](const auto& law) {
         if constexpr (kCondensableLaw<std::decay_t<decltype(law)>>)
-          catch_up_condensed(law, concrete_inputs(position_eval_, rotation_), contacts_,
-                             condensation_);
+          catch_up_condensed(law, concrete_inputs(concrete_.position_eval, concrete_.rotation),
+                             concrete_.contacts, concrete_.condensation);
       },
-      law_);
-}
-
-Real PulledBar::velocity_at(Real t) const {
-  if (ramp_time <= 0.0 || t >= ramp_time) return speed;
-  return speed * 0.5 * (1.0 - std::cos(kPi * t / ramp_time));
+      concrete_.law);
 }
 
 const PulledBar* Simulation::find_pulled_bar(const std::string& name) const {
-  for (const auto& p : pulled_)
-    if (p.name == name) return &p;
-  return nullptr;
+  return pulled_.find(name);
 }
 
-const Plate* Simulation::find_plate(const std::string& name) const {
-  for (const auto& p : plates_)
-    if (p.name == name) return &p;
-  return nullptr;
-}
+const Plate* Simulation::find_plate(const std::string& name) const { return plates_.find(name); }
 
 void Simulation::step() {
   // 1. Contacts at the current positions (the law picked once for the whole loop).
   ContactNetwork& net = specimen_.contacts;
   // The last evaluation's kinematics stay at hand: a contact condensed then and visited now first
   // has its points brought up to that step (contact_loop.hpp, evaluate_contacts).
-  std::swap(rotation_, rotation_prev_);
-  std::swap(position_eval_, position_prev_);
+  std::swap(concrete_.rotation, concrete_.rotation_prev);
+  std::swap(concrete_.position_eval, concrete_.position_prev);
   parallel_for(bodies_.size(), [&](Index i) {
-    rotation_[i] = bodies_.orientation[i].toRotationMatrix();
-    position_eval_[i] = bodies_.position[i];
-    pose_.set(i, bodies_.position[i], bodies_.orientation[i]);
+    concrete_.rotation[i] = bodies_.orientation[i].toRotationMatrix();
+    concrete_.position_eval[i] = bodies_.position[i];
+    concrete_.pose.set(i, bodies_.position[i], bodies_.orientation[i]);
   });
   // Evaluated from the copy, so that what a later catch-up reads is what this evaluation used.
-  ContactInputs concrete = concrete_inputs(position_eval_, rotation_);
-  concrete.pose = pose_.ptr();
-  const ContactInputs previous = concrete_inputs(position_prev_, rotation_prev_);
-  ElasticCondensation* condensed = condensation_.sums.empty() ? nullptr : &condensation_;
+  ContactInputs concrete = concrete_inputs(concrete_.position_eval, concrete_.rotation);
+  concrete.pose = concrete_.pose.ptr();
+  const ContactInputs previous = concrete_inputs(concrete_.position_prev, concrete_.rotation_prev);
+  ElasticCondensation* condensed =
+      concrete_.condensation.sums.empty() ? nullptr : &concrete_.condensation;
   std::visit(
       [&](const auto& law) {
         if constexpr (kCondensableLaw<std::decay_t<decltype(law)>>)
-          evaluate_contacts(law, concrete, contacts_, condensed, &previous);
+          evaluate_contacts(law, concrete, concrete_.contacts, condensed, &previous);
         else
-          evaluate_contacts(law, concrete, contacts_);
+          evaluate_contacts(law, concrete, concrete_.contacts);
       },
-      law_);
+      concrete_.law);
   // Steel-concrete interfaces (each bar with its law), interaction nodes, 2. plates.
   parallel_tasks(static_cast<Index>(small_tasks_.size()),
                  [&](Index j) { run_small_task(small_tasks_[static_cast<std::size_t>(j)]); });
-  sum_plate_reactions(plates_, plate_contacts_);
+  sum_plate_reactions(plates_.plates, plates_.contacts);
   // 3. Gather, 4. integrate.
   gather_forces();
   integrate();
 
   // Energy ledger: what this step dissipated (sums in a fixed order: deterministic).
   Real damage = 0.0, friction = 0.0;
-  if (!contacts_.block_damage.empty()) {  // the blocked loop summed its blocks
-    for (std::size_t k = 0; k < contacts_.block_damage.size(); ++k) {
-      damage += contacts_.block_damage[k];
-      friction += contacts_.block_friction[k];
+  if (!concrete_.contacts.block_damage.empty()) {  // the blocked loop summed its blocks
+    for (std::size_t k = 0; k < concrete_.contacts.block_damage.size(); ++k) {
+      damage += concrete_.contacts.block_damage[k];
+      friction += concrete_.contacts.block_friction[k];
     }
   } else {
     for (Index c = 0; c < net.contact_count(); ++c) {
-      damage += contacts_.dissipated_damage[c];
-      friction += contacts_.dissipated_friction[c];
+      damage += concrete_.contacts.dissipated_damage[c];
+      friction += concrete_.contacts.dissipated_friction[c];
     }
   }
-  for (Index j = 0; j < plate_contacts_.size(); ++j)
-    friction += plate_contacts_.dissipated_friction[j];
-  for (const auto& st : interface_states_)
+  for (Index j = 0; j < plates_.contacts.size(); ++j)
+    friction += plates_.contacts.dissipated_friction[j];
+  for (const auto& st : bars_.interface_states)
     for (std::size_t c = 0; c < st.dissipated_damage.size(); ++c) {
       damage += st.dissipated_damage[c];
       friction += st.dissipated_friction[c];
     }
   Real plastic = 0.0;
-  for (std::size_t j = 0; j < nodes_.size(); ++j) plastic += node_forces_[j].dissipated;
+  for (std::size_t j = 0; j < bars_.nodes.size(); ++j) plastic += bars_.node_forces[j].dissipated;
   energy_.plastic += plastic;
   Real damping_work = 0.0, kinetic = 0.0;
-  for (const SphereBlockSums& s : sphere_block_sums_) {
+  for (const BodyStepSums::Block& s : step_sums_.blocks) {
     damping_work += s.damping_work;
     kinetic += s.kinetic;
   }
-  for (std::size_t i = static_cast<std::size_t>(spheres_); i < body_kinetic_.size(); ++i) {
-    damping_work += body_damping_work_[i];
-    kinetic += body_kinetic_[i];
+  for (std::size_t i = static_cast<std::size_t>(step_sums_.spheres); i < step_sums_.kinetic.size();
+       ++i) {
+    damping_work += step_sums_.damping_work[i];
+    kinetic += step_sums_.kinetic[i];
   }
   energy_.damage += damage;
   energy_.friction += friction;
@@ -382,32 +315,33 @@ void Simulation::step() {
   energy_.kinetic = kinetic;
 
   // Pulled bars: the driver's work over the last move (trapezoidal in its force).
-  for (std::size_t k = 0; k < pulled_.size(); ++k) {
-    PulledBar& pb = pulled_[k];
+  for (std::size_t k = 0; k < pulled_.bars.size(); ++k) {
+    PulledBar& pb = pulled_.bars[k];
     pb.force = bodies_.force[pb.body];
     const Real f_driver = pb.load();
-    const Real work = 0.5 * (pulled_force_prev_[k] + f_driver) * pb.last_step;
+    const Real work = 0.5 * (pulled_.force_prev[k] + f_driver) * pb.last_step;
     pb.work += work;
     energy_.external_work += work;
-    pulled_force_prev_[k] = f_driver;
-    pb.last_step = bodies_.velocity[pb.body].dot(pb.direction) * dt_;
+    pulled_.force_prev[k] = f_driver;
+    pb.last_step = bodies_.velocity[pb.body].dot(pb.direction) * time_step_.dt;
     pb.displacement += pb.last_step;
   }
   // 5. Plates: work done over the last move (trapezoidal in the force), then the next move.
-  for (std::size_t p = 0; p < plates_.size(); ++p) {
-    Plate& plate = plates_[p];
+  for (std::size_t p = 0; p < plates_.plates.size(); ++p) {
+    Plate& plate = plates_.plates[p];
     const Real f_on_specimen = -plate.force[plate.axis];
-    const Real work = 0.5 * (plate_force_prev_[p] + f_on_specimen) *
-                      (plate.displacement - plate_displacement_prev_[p]);
+    const Real work = 0.5 * (plates_.force_prev[p] + f_on_specimen) *
+                      (plate.displacement - plates_.displacement_prev[p]);
     plate.work += work;
     energy_.external_work += work;
-    plate_force_prev_[p] = f_on_specimen;
-    plate_displacement_prev_[p] = plate.displacement;
-    plate.displacement += loading_rate_.factor() * plate.velocity_at(time_ + 0.5 * dt_) * dt_;
+    plates_.force_prev[p] = f_on_specimen;
+    plates_.displacement_prev[p] = plate.displacement;
+    plate.displacement +=
+        loading_rate_.factor() * plate.velocity_at(time_ + 0.5 * time_step_.dt) * time_step_.dt;
   }
-  time_ += dt_;
+  time_ += time_step_.dt;
   ++steps_;
-  loading_rate_.update(steps_, dt_, energy_);
+  loading_rate_.update(steps_, time_step_.dt, energy_);
 }
 
 void Simulation::run_small_task(const SmallTask& task) {
@@ -415,34 +349,35 @@ void Simulation::run_small_task(const SmallTask& task) {
     case SmallTask::kInterface: {
       const InterfaceContacts& ic = specimen_.interfaces[task.bar];
       const ContactInputs in =
-          body_inputs(ic.net, bodies_, rotation_.data(), ic.anchor0.data(), dt_);
-      ContactState& st = interface_states_[task.bar];
+          body_inputs(ic.net, bodies_, concrete_.rotation.data(), ic.anchor0.data(), time_step_.dt);
+      ContactState& st = bars_.interface_states[task.bar];
       std::visit(
           [&](const auto& law) {
             for (Index c = task.begin; c < task.end; ++c) evaluate_contact(law, in, st, nullptr, c);
           },
-          interface_law_[task.bar]);
+          bars_.interface_law[task.bar]);
       break;
     }
     case SmallTask::kPlates:
       for (Index k = task.begin; k < task.end; ++k)
-        evaluate_plate_contact(plates_, plate_contacts_, bodies_, k);
+        evaluate_plate_contact(plates_.plates, plates_.contacts, bodies_, k);
       break;
     case SmallTask::kNodes:
       for (Index j = task.begin; j < task.end; ++j) {
-        const NodeRef& r = node_refs_[static_cast<std::size_t>(j)];
-        node_forces_[static_cast<std::size_t>(j)] = evaluate_node(
-            nodes_[static_cast<std::size_t>(j)], node_states_[static_cast<std::size_t>(j)],
-            bodies_.position[r.body_a], bodies_.orientation[r.body_a], bodies_.position[r.body_b],
-            bodies_.orientation[r.body_b]);
+        const NodeRef& r = bars_.node_refs[static_cast<std::size_t>(j)];
+        bars_.node_forces[static_cast<std::size_t>(j)] =
+            evaluate_node(bars_.nodes[static_cast<std::size_t>(j)],
+                          bars_.node_states[static_cast<std::size_t>(j)],
+                          bodies_.position[r.body_a], bodies_.orientation[r.body_a],
+                          bodies_.position[r.body_b], bodies_.orientation[r.body_b]);
       }
       break;
   }
 }
 
 void Simulation::gather_forces() {
-  const ContactState& cs = contacts_;
-  const BodyContacts& bc = body_contacts_;
+  const ContactState& cs = concrete_.contacts;
+  const BodyContacts& bc = concrete_.body_contacts;
   const Index bodies = bodies_.size();
   parallel_for(bodies, [&](Index i) {
     // A body's B-side contacts belong to particles before it along the curve, some far before:
@@ -470,9 +405,9 @@ void Simulation::gather_forces() {
     bodies_.torque[i] = t;
   });
   // The few interface contacts, nodes and plate contacts: serial, in a fixed order.
-  for (std::size_t k = 0; k < interface_states_.size(); ++k) {
+  for (std::size_t k = 0; k < bars_.interface_states.size(); ++k) {
     const ContactNetwork& nw = specimen_.interfaces[k].net;
-    const ContactState& st = interface_states_[k];
+    const ContactState& st = bars_.interface_states[k];
     for (Index c = 0; c < nw.contact_count(); ++c) {
       bodies_.force[nw.particle_b[c]] += st.force_b[c];
       bodies_.torque[nw.particle_b[c]] += st.torque_b[c];
@@ -480,39 +415,40 @@ void Simulation::gather_forces() {
       bodies_.torque[nw.particle_a[c]] += st.torque_a[c];
     }
   }
-  for (std::size_t j = 0; j < nodes_.size(); ++j) {
-    const NodeRef& r = node_refs_[j];
-    bodies_.force[r.body_a] += node_forces_[j].force_a;
-    bodies_.torque[r.body_a] += node_forces_[j].torque_a;
-    bodies_.force[r.body_b] += node_forces_[j].force_b;
-    bodies_.torque[r.body_b] += node_forces_[j].torque_b;
+  for (std::size_t j = 0; j < bars_.nodes.size(); ++j) {
+    const NodeRef& r = bars_.node_refs[j];
+    bodies_.force[r.body_a] += bars_.node_forces[j].force_a;
+    bodies_.torque[r.body_a] += bars_.node_forces[j].torque_a;
+    bodies_.force[r.body_b] += bars_.node_forces[j].force_b;
+    bodies_.torque[r.body_b] += bars_.node_forces[j].torque_b;
   }
-  for (Index j = 0; j < plate_contacts_.size(); ++j) {
-    const Index i = plate_contacts_.particle[j];
-    bodies_.force[i] += plate_contacts_.force[j];
-    bodies_.torque[i] += plate_contacts_.torque[j];
+  for (Index j = 0; j < plates_.contacts.size(); ++j) {
+    const Index i = plates_.contacts.particle[j];
+    bodies_.force[i] += plates_.contacts.force[j];
+    bodies_.torque[i] += plates_.contacts.torque[j];
   }
 }
 
 void Simulation::integrate() {
-  const Real dt = dt_;
+  const Real dt = time_step_.dt;
   const Real alpha = damping_;
   Bodies& b = bodies_;
   // The concrete particles in SIMD lanes (sphere_update.hpp), then the cylinders.
-  const SphereStepOutputs out{body_damping_work_.data(), body_kinetic_.data(), body_jumped_.data()};
+  const SphereStepOutputs out{step_sums_.damping_work.data(), step_sums_.kinetic.data(),
+                              step_sums_.jumped.data()};
   // Each block also sums its bodies' energies and flags (in body order) while they are in cache:
   // the step's ledger adds the blocks in order instead of passing over every body on one thread.
-  parallel_for_blocks(spheres_, kSphereBlock, [&](Index begin, Index end) {
+  parallel_for_blocks(step_sums_.spheres, BodyStepSums::kSphereBlock, [&](Index begin, Index end) {
     advance_spheres(b, begin, end, dt, alpha, out);
-    SphereBlockSums s;
+    BodyStepSums::Block s;
     for (Index i = begin; i < end; ++i) {
-      s.damping_work += body_damping_work_[i];
-      s.kinetic += body_kinetic_[i];
-      s.jumped |= body_jumped_[i];
+      s.damping_work += step_sums_.damping_work[i];
+      s.kinetic += step_sums_.kinetic[i];
+      s.jumped |= step_sums_.jumped[i];
     }
-    sphere_block_sums_[static_cast<std::size_t>(begin / kSphereBlock)] = s;
+    step_sums_.blocks[static_cast<std::size_t>(begin / BodyStepSums::kSphereBlock)] = s;
   });
-  for (Index i = spheres_; i < b.size(); ++i) {
+  for (Index i = step_sums_.spheres; i < b.size(); ++i) {
     // Local non-viscous damping (Cundall): each component of the force is reduced by alpha |F|
     // against the velocity. Its work, on the mean of the old and new velocities, is the energy
     // damping removes (the leap-frog kinetic energy changes by exactly that mean).
@@ -526,10 +462,10 @@ void Simulation::integrate() {
       td[k] = cundall_damping(alpha, t[k], w_old[k]);
     }
     Vec3 v_new = v_old + (f - fd) * (dt / b.mass[i]);
-    const std::int64_t driven = driven_[static_cast<std::size_t>(i)];
+    const std::int64_t driven = pulled_.driven[static_cast<std::size_t>(i)];
     if (driven >= 0) {
       // A pulled cylinder: prescribed velocity, rotation held, no damping.
-      const PulledBar& pb = pulled_[static_cast<std::size_t>(driven)];
+      const PulledBar& pb = pulled_.bars[static_cast<std::size_t>(driven)];
       v_new = loading_rate_.factor() * pb.velocity_at(time_ + 0.5 * dt) * pb.direction;
       fd.setZero();
       td = t;
@@ -548,29 +484,29 @@ void Simulation::integrate() {
     b.angular_velocity[i] = w_new;
     const Vec3 dx = v_new * dt;
     b.position[i] += dx;
-    body_damping_work_[i] = damping_work;
+    step_sums_.damping_work[i] = damping_work;
     // The leap-frog's kinetic energy at the whole step, 1/2 m v(n-1/2).v(n+1/2) (and its rotational
     // analogue): the quantity it conserves with the strain energy. The mean of the two half-step
     // energies would oscillate by m |a dt|^2 / 4.
-    body_kinetic_[i] = 0.5 * b.mass[i] * v_old.dot(v_new) +
-                       0.25 * (L_old.dot(w_new) + b.angular_momentum[i].dot(w_old));
+    step_sums_.kinetic[i] = 0.5 * b.mass[i] * v_old.dot(v_new) +
+                            0.25 * (L_old.dot(w_new) + b.angular_momentum[i].dot(w_old));
     // Instability: in a stable run nothing moves a twentieth of its size in one step, nor turns
     // 0.05 rad (the turn is exp(w dt): its angle is |w| dt).
     const Real dx_limit = 0.05 * b.radius[i];
-    body_jumped_[i] = !(dx.squaredNorm() < dx_limit * dx_limit) ||
-                      !(w_new.squaredNorm() * dt * dt < kStableTurnLimit * kStableTurnLimit);
+    step_sums_.jumped[i] = !(dx.squaredNorm() < dx_limit * dx_limit) ||
+                           !(w_new.squaredNorm() * dt * dt < kStableTurnLimit * kStableTurnLimit);
   }
   bool jumped = false;
-  for (const SphereBlockSums& s : sphere_block_sums_) jumped |= s.jumped != 0;
-  for (Index i = spheres_; i < b.size(); ++i) jumped |= body_jumped_[i] != 0;
+  for (const BodyStepSums::Block& s : step_sums_.blocks) jumped |= s.jumped != 0;
+  for (Index i = step_sums_.spheres; i < b.size(); ++i) jumped |= step_sums_.jumped[i] != 0;
   if (!jumped) return;
   for (Index i = 0; i < b.size(); ++i)
-    if (body_jumped_[i])
+    if (step_sums_.jumped[i])
       fail(
           "numerical instability at step {} (t = {:.6g} s): body {} moved {:.3g} m in one step "
           "(time step {:.4g} s, stable estimate {:.4g} s); lower solver.time_step or "
           "solver.dt_safety",
-          steps_, time_, i, (b.velocity[i] * dt).norm(), dt_, stable_dt_);
+          steps_, time_, i, (b.velocity[i] * dt).norm(), time_step_.dt, time_step_.stable);
 }
 
 namespace {
@@ -592,10 +528,10 @@ Real Simulation::concrete_strain_energy() const {
   // at any thread count. A history row asks for it every few dozen steps, and serial it costs
   // about a whole step of a cracked beam (bench/RESULTS.md).
   const ContactNetwork& net = specimen_.contacts;
-  const bool condensed = condensation_.any_condensed;
+  const bool condensed = concrete_.condensation.any_condensed;
   constexpr Index kBlock = 1024;
   const Index n = net.contact_count();
-  strain_energy_blocks_.assign(static_cast<std::size_t>((n + kBlock - 1) / kBlock), 0.0);
+  concrete_.strain_energy_blocks.assign(static_cast<std::size_t>((n + kBlock - 1) / kBlock), 0.0);
   std::visit(
       [&](const auto& law) {
         parallel_for_blocks(n, kBlock, [&](Index begin, Index end) {
@@ -604,28 +540,29 @@ Real Simulation::concrete_strain_energy() const {
           Real e = 0.0;
           for (Index c = begin; c < end; ++c) {
             const Index a = net.particle_a[c], b = net.particle_b[c];
-            e += condensed && condensation_.condensed[static_cast<std::size_t>(c)]
-                     ? condensed_strain_energy(condensation_.sums, c, position_eval_[a],
-                                               position_eval_[b], rotation_[a], rotation_[b])
-                     : contacts_.strain_energy(law, net, c);
+            e += condensed && concrete_.condensation.condensed[static_cast<std::size_t>(c)]
+                     ? condensed_strain_energy(
+                           concrete_.condensation.sums, c, concrete_.position_eval[a],
+                           concrete_.position_eval[b], concrete_.rotation[a], concrete_.rotation[b])
+                     : concrete_.contacts.strain_energy(law, net, c);
           }
-          strain_energy_blocks_[static_cast<std::size_t>(begin / kBlock)] = e;
+          concrete_.strain_energy_blocks[static_cast<std::size_t>(begin / kBlock)] = e;
         });
       },
-      law_);
+      concrete_.law);
   Real e = 0.0;
-  for (const Real block : strain_energy_blocks_) e += block;
+  for (const Real block : concrete_.strain_energy_blocks) e += block;
   return e;
 }
 
 Real Simulation::strain_energy() const {
   Real strain = concrete_strain_energy();
-  for (Index j = 0; j < plate_contacts_.size(); ++j) strain += plate_contacts_.strain_energy[j];
-  for (std::size_t k = 0; k < interface_states_.size(); ++k)
-    strain +=
-        points_strain_energy(interface_law_[k], specimen_.interfaces[k].net, interface_states_[k]);
-  for (std::size_t j = 0; j < nodes_.size(); ++j)
-    strain += node_elastic_energy(nodes_[j], node_states_[j]);
+  for (Index j = 0; j < plates_.contacts.size(); ++j) strain += plates_.contacts.strain_energy[j];
+  for (std::size_t k = 0; k < bars_.interface_states.size(); ++k)
+    strain += points_strain_energy(bars_.interface_law[k], specimen_.interfaces[k].net,
+                                   bars_.interface_states[k]);
+  for (std::size_t j = 0; j < bars_.nodes.size(); ++j)
+    strain += node_elastic_energy(bars_.nodes[j], bars_.node_states[j]);
   return strain;
 }
 
@@ -637,32 +574,33 @@ Energy Simulation::energy() const {
 
 Index Simulation::damaged_points() const {
   Index n = 0;
-  for (const LocalPointRecord& r : contacts_.point.records) n += (r.damage > 0.0 && r.damage < 1.0);
+  for (const LocalPointRecord& r : concrete_.contacts.point.records)
+    n += (r.damage > 0.0 && r.damage < 1.0);
   return n;
 }
 
 Index Simulation::broken_interface_points() const {
   Index n = 0;
-  for (const auto& st : interface_states_)
+  for (const auto& st : bars_.interface_states)
     for (const LocalPointRecord& r : st.point.records) n += (r.damage >= 1.0);
   return n;
 }
 
 Index Simulation::yielded_nodes() const {
   Index n = 0;
-  for (const auto& s : node_states_) n += s.yielded;
+  for (const auto& s : bars_.node_states) n += s.yielded;
   return n;
 }
 
 Real Simulation::max_axial_force() const {
   Real m = 0.0;
-  for (const auto& s : node_states_) m = std::max(m, std::abs(s.axial_force));
+  for (const auto& s : bars_.node_states) m = std::max(m, std::abs(s.axial_force));
   return m;
 }
 
 Index Simulation::broken_points() const {
   Index n = 0;
-  for (const LocalPointRecord& r : contacts_.point.records) n += (r.damage >= 1.0);
+  for (const LocalPointRecord& r : concrete_.contacts.point.records) n += (r.damage >= 1.0);
   return n;
 }
 

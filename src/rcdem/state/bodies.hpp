@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 #include <vector>
 
+#include "rcdem/core/archive.hpp"
 #include "rcdem/core/types.hpp"
 #include "rcdem/state/particles.hpp"
 
@@ -24,6 +25,15 @@ struct Bodies {
   std::vector<Real> radius;            // size scale, for the instability check
 
   Index size() const { return static_cast<Index>(position.size()); }
+
+  // The checkpoint's "bodies" table (core/archive.hpp): what a step changes. Reference positions,
+  // orientations, masses and inertias come with the regenerated specimen.
+  template <class Archive, class Self>
+  static void serialize(Archive& ar, Self& b) {
+    ar.table("bodies", b.position.size(), column(b.position), column(b.velocity),
+             column(b.angular_velocity), column(b.orientation), column(b.angular_momentum),
+             column(b.force), column(b.torque));
+  }
 };
 
 // The first `count` particles as bodies. Mass = density x Voronoi cell volume, so the specimen

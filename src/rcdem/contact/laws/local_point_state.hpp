@@ -1,6 +1,9 @@
 #pragma once
 // What a contact law reads and writes at one local contact point (SPEC 1, 4-5). Plain data, so
 // the solver can keep it in flat arrays and the laws stay free functions of it.
+#include <concepts>
+#include <type_traits>
+
 #include "rcdem/core/types.hpp"
 
 namespace rcdem {
@@ -43,6 +46,19 @@ struct BasicPointState {
 };
 using LocalPointState = BasicPointState<Vec3>;
 using PlanePointState = BasicPointState<PlaneVec>;
+
+// A point's history as checkpoint columns (core/archive.hpp; plate contacts), in this order.
+template <class Record, class S>
+requires std::same_as<std::remove_const_t<S>, LocalPointState>
+void archive_fields(Record& r, S& s) {
+  r.put(s.fn);
+  r.put(s.fs);
+  r.put(s.un);
+  r.put(s.us);
+  r.put(s.un_max);
+  r.put(s.us_max_sq);
+  r.put(s.damage);
+}
 
 // Per-point constants: stiffness (3)-(4) and strength (5)-(6). The law derives its elastic limits
 // u_n0 = fn_max / kn and u_s0 = c_max / ks from them; kn and ks must be > 0.

@@ -1,0 +1,47 @@
+#pragma once
+// Bars pulled out by their first cylinder (pull-out tests, bars.*.pull_velocity): the cylinder's
+// velocity is prescribed along the bar, its rotation held; the force it takes is the pull-out load.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "rcdem/config/scenario.hpp"
+#include "rcdem/core/archive.hpp"
+#include "rcdem/core/types.hpp"
+#include "rcdem/specimens/specimen.hpp"
+
+namespace rcdem {
+
+struct PulledBar {
+  std::string name;
+  Index body = 0;
+  Vec3 direction = Vec3::Zero();  // unit, end -> start
+  Real speed = 0.0, ramp_time = 0.0;
+  Real displacement = 0.0;    // along direction
+  Vec3 force = Vec3::Zero();  // on the cylinder from the concrete and the rest of the bar
+  Real work = 0.0;
+  Real last_step = 0.0;
+  Real velocity_at(Real t) const;
+  Real load() const { return -force.dot(direction); }
+};
+
+struct PulledBars {
+  std::vector<PulledBar> bars;
+  std::vector<std::int64_t> driven;  // per body: index into bars, or -1
+  std::vector<Real> force_prev;      // per bar: the driver's force at the last step (its work)
+
+  // The scenario's pulled bars; `bodies`: the count of all bodies (cylinders after the concrete).
+  static PulledBars build(const Scenario& sc, const Specimen& specimen, Index bodies);
+  const PulledBar* find(const std::string& name) const;
+  bool drives(Index body) const { return driven[static_cast<std::size_t>(body)] >= 0; }
+
+  // The checkpoint's "pulled_bars" (core/archive.hpp).
+  template <class Archive, class Self>
+  static void serialize(Archive& ar, Self& s) {
+    ar.table("pulled_bars", s.bars.size(), column(s.bars, &PulledBar::displacement),
+             column(s.bars, &PulledBar::force), column(s.bars, &PulledBar::work),
+             column(s.bars, &PulledBar::last_step), column(s.force_prev));
+  }
+};
+
+}  // namespace rcdem
