@@ -81,11 +81,11 @@ TEST(Schema, TemplateParsesBackWithEveryDefault) {
   EXPECT_DOUBLE_EQ(s.contact.G_fn, 9.002);
 }
 
-// A key's default is written twice, in config/scenario_schema.cpp (what a file that omits the key
-// gets) and in the struct's member initialiser (what code that builds a Scenario gets, the tests
-// among them). Until one declaration binds both (issue 29, step 1), this test keeps them equal:
-// a scenario of only the required keys, one plate and one bar (its yield stress is required)
-// against default-constructed structs, field by field.
+// A key's default is its member's initialiser (config/scenario_schema.cpp binds the two), so what
+// a file that omits the key gets and what code that builds a Scenario gets are one value. This
+// test checks the round trip, default -> file -> member, field by field: a scenario of only the
+// required keys, one plate and one bar (its yield stress is required) against default-constructed
+// structs.
 TEST(Scenario, SchemaDefaultsEqualTheStructsDefaults) {
   const Scenario s = parse_scenario(
       "[specimen]\nshape = \"beam\"\nsize = [0.4, 0.1, 0.1]\n"

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "rcdem/config/scenario_bindings.hpp"
 #include "rcdem/config/scenario_checks.hpp"
 #include "rcdem/config/scenario_text.hpp"
 #include "rcdem/config/specimen_geometry.hpp"
@@ -190,9 +191,6 @@ struct Reader {
     }
   }
 
-  double real(const std::string& p) const { return std::get<double>(values.at(p)); }
-  std::int64_t integer(const std::string& p) const { return std::get<std::int64_t>(values.at(p)); }
-  bool boolean(const std::string& p) const { return std::get<bool>(values.at(p)); }
   const std::string& string(const std::string& p) const {
     return std::get<std::string>(values.at(p));
   }
@@ -249,75 +247,34 @@ void check_consistency(const Reader& r, const Scenario& s) {
         aggregate_fraction, 1.0 - g.porosity);
 }
 
-void convert_specimen_and_generation(const Reader& r, Scenario& s) {
-  const auto& size = std::get<std::vector<double>>(r.values.at("specimen.size"));
-  s.specimen.shape = r.string("specimen.shape");
-  s.specimen.size = Vec3(size[0], size[1], size[2]);
-  s.specimen.notch_depth = r.real("specimen.notch_depth");
-  s.specimen.notch_width = r.real("specimen.notch_width");
-
-  auto& g = s.generation;
-  g.seed = static_cast<std::uint64_t>(r.integer("generation.seed"));
-  g.porosity = r.real("generation.porosity");
-  g.relaxation_iterations = static_cast<int>(r.integer("generation.relaxation_iterations"));
-  g.min_distance_factor = r.real("generation.min_distance_factor");
-  g.max_particles = r.integer("generation.max_particles");
-  g.aggregate_content = r.real("generation.aggregate.content");
-  g.aggregate_density = r.real("generation.aggregate.density");
-  g.aggregate_d_min = r.real("generation.aggregate.d_min");
-  g.aggregate_d_max = r.real("generation.aggregate.d_max");
-  g.aggregate_grading =
-      r.string("generation.aggregate.grading") == "fuller" ? Grading::Fuller : Grading::Uniform;
-  g.fuller_exponent = r.real("generation.aggregate.fuller_exponent");
-  g.mortar_d_min = r.real("generation.mortar.d_min");
-  g.mortar_d_max = r.real("generation.mortar.d_max");
+// Every bound key's member from the value read (config/scenario_bindings.hpp); `prefix`: the
+// named section ("plates.top") of an instance's keys.
+template <class Target>
+void set_bound(const Reader& r, const std::vector<config::BoundKey<Target>>& keys,
+               const std::string& prefix, Target& t) {
+  for (const auto& k : keys) k.set(r.values.at(prefix.empty() ? k.path : prefix + "." + k.path), t);
 }
 
-void convert_contact_and_solver(const Reader& r, Scenario& s) {
-  s.tessellation = r.string("tessellation.kind") == "radical" ? TessellationKind::Radical
-                                                              : TessellationKind::Voronoi;
-  auto& c = s.contact;
-  c.E_bar = r.real("contact.E_bar");
-  c.alpha = r.real("contact.alpha");
-  c.mu_c = r.real("contact.mu_c");
-  c.sigma_nt = r.real("contact.sigma_nt");
-  c.tau = r.real("contact.tau");
-  c.G_fn = r.real("contact.G_fn");
-  c.G_fs = r.real("contact.G_fs");
-
-  s.law = r.string("contact.law");
-  s.solver.density = r.real("material.density");
-  s.solver.estimate = r.string("solver.time_step_estimate") == "assembled"
-                          ? TimeStepEstimate::Assembled
-                          : TimeStepEstimate::PerBody;
-  s.solver.dt_safety = r.real("solver.dt_safety");
+void check_solver(const Reader& r, const Scenario& s) {
   // SPEC 6: safety <= 0.5 on the per-body estimate, <= 0.8 on the assembly's critical step.
   if (s.solver.dt_safety > max_dt_safety(s.solver.estimate))
     fail(
         "{}: key 'solver.dt_safety' = {}: with solver.time_step_estimate = \"per_body\" it must "
         "be at most 0.5 (SPEC 6); up to 0.8 needs time_step_estimate = \"assembled\"",
         r.at("solver.dt_safety"), s.solver.dt_safety);
-  s.solver.time_step = r.real("solver.time_step");
   if (s.solver.time_step > 0.0 && s.solver.time_step < kMinimumTimeStep)
     fail("{}: key 'solver.time_step' = {} s: expected 0 (automatic) or at least {} s",
          r.at("solver.time_step"), s.solver.time_step, kMinimumTimeStep);
-  s.solver.damping = r.real("solver.damping");
-  s.solver.mass_scaling = r.real("solver.mass_scaling");
-  s.solver.added_mass_limit = r.real("solver.added_mass_limit");
-  s.solver.bar_rotational_inertia_scaling = r.real("solver.bar_rotational_inertia_scaling");
-  s.solver.particle_rotational_inertia_scaling =
-      r.real("solver.particle_rotational_inertia_scaling");
-  s.solver.condense_elastic_contacts = r.boolean("solver.condense_elastic_contacts");
 }
 
 // One [plates.NAME] section; `s` gives the specimen's size its extent is checked against.
 PlateSettings convert_plate(const Reader& r, const Scenario& s, const std::string& inst) {
   PlateSettings p;
   p.name = inst.substr(inst.find('.') + 1);
+  set_bound(r, config::scenario_bindings().plate, inst, p);
   const std::string face = r.string(inst + ".face");
   p.axis = face[0] - 'x';
   p.side = face[1] == '-' ? -1 : 1;
-  p.extent = std::get<std::vector<double>>(r.values.at(inst + ".extent"));
   if (!p.extent.empty() && (p.extent[0] >= p.extent[1] || p.extent[2] >= p.extent[3]))
     fail(
         "{}: key '{}.extent': expected [u_min, u_max, v_min, v_max] with u_min < u_max and "
@@ -333,10 +290,6 @@ PlateSettings convert_plate(const Reader& r, const Scenario& s, const std::strin
           r.at(inst + ".extent"), inst, p.extent[0], p.extent[1], p.extent[2], p.extent[3],
           s.specimen.size[u], s.specimen.size[v]);
   }
-  p.velocity = r.real(inst + ".velocity");
-  p.ramp_time = r.real(inst + ".ramp_time");
-  p.glued = r.boolean(inst + ".glued");
-  p.friction = r.real(inst + ".friction");
   return p;
 }
 
@@ -344,28 +297,12 @@ PlateSettings convert_plate(const Reader& r, const Scenario& s, const std::strin
 BarSettings convert_bar(const Reader& r, const Scenario& s, const std::string& inst) {
   BarSettings b;
   b.name = inst.substr(inst.find('.') + 1);
-  const auto& a = std::get<std::vector<double>>(r.values.at(inst + ".start"));
-  const auto& e = std::get<std::vector<double>>(r.values.at(inst + ".end"));
-  b.start = Vec3(a[0], a[1], a[2]);
-  b.end = Vec3(e[0], e[1], e[2]);
-  b.diameter = r.real(inst + ".diameter");
-  b.cylinder_length = r.real(inst + ".cylinder_length");
-  b.E = r.real(inst + ".E");
-  b.nu = r.real(inst + ".nu");
-  b.f_y = r.real(inst + ".f_y");
-  b.density = r.real(inst + ".density");
-  const std::string law = r.string(inst + ".interface");
-  b.interface = law == "EL"     ? InterfaceLaw::EL
-                : law == "NL-A" ? InterfaceLaw::NL_A
-                                : InterfaceLaw::NL_B;
-  b.interface_softening = r.string(inst + ".interface_softening");
+  set_bound(r, config::scenario_bindings().bar, inst, b);
   if (b.interface == InterfaceLaw::EL && b.interface_softening != BarSettings{}.interface_softening)
     fail(
         "{}: key '{}.interface_softening': expected only with a nonlinear interface (NL-A, "
         "NL-B); interface = \"EL\" does not soften",
         r.at(inst + ".interface_softening"), inst);
-  b.interface_strength_scale = r.real(inst + ".interface_strength_scale");
-  b.interface_energy_scale = r.real(inst + ".interface_energy_scale");
   if (b.interface == InterfaceLaw::EL &&
       (b.interface_strength_scale != 1.0 || b.interface_energy_scale != 1.0)) {
     const std::string key = inst + (b.interface_strength_scale != 1.0 ? ".interface_strength_scale"
@@ -375,9 +312,6 @@ BarSettings convert_bar(const Reader& r, const Scenario& s, const std::string& i
         "has no strength to scale",
         r.at(key), key);
   }
-  b.sphere_spacing = r.real(inst + ".sphere_spacing");
-  b.pull_velocity = r.real(inst + ".pull_velocity");
-  b.pull_ramp_time = r.real(inst + ".pull_ramp_time");
   const Real length = (b.end - b.start).norm();
   if (length < 2.0 * b.diameter)
     fail("{}: bar '{}' is {} m long: expected at least two diameters ({} m) between start and end",
@@ -398,14 +332,8 @@ BarSettings convert_bar(const Reader& r, const Scenario& s, const std::string& i
   return b;
 }
 
-void convert_loading_stop_and_output(const Reader& r, Scenario& s) {
-  s.control_plate = r.string("loading.control_plate");
-  s.control_bar = r.string("loading.control_bar");
-  s.loading_rate.adaptive = r.boolean("loading.adaptive_rate");
-  s.loading_rate.max_factor = r.real("loading.max_rate_factor");
-  s.loading_rate.kinetic_ratio = r.real("loading.kinetic_ratio");
-  s.loading_rate.damage_work_ratio = r.real("loading.damage_work_ratio");
-  s.loading_rate.doubling_time = r.real("loading.rate_doubling_time");
+// The control named exists: a pulled bar, or a plate, not both.
+void check_control(const Reader& r, const Scenario& s) {
   if (!s.control_bar.empty()) {
     const auto it = std::find_if(s.bars.begin(), s.bars.end(),
                                  [&](const BarSettings& b) { return b.name == s.control_bar; });
@@ -423,15 +351,6 @@ void convert_loading_stop_and_output(const Reader& r, Scenario& s) {
                    [&](const PlateSettings& p) { return p.name == s.control_plate; }))
     fail("{}: key 'loading.control_plate': no plate named '{}' (add a [plates.{}] section)",
          r.at("loading.control_plate"), s.control_plate, s.control_plate);
-  s.stop.displacement = r.real("stop.displacement");
-  s.stop.load_drop = r.real("stop.load_drop");
-  s.stop.post_peak_displacement = r.real("stop.post_peak_displacement");
-  s.stop.time = r.real("stop.time");
-  s.stop.steps = r.integer("stop.steps");
-  s.output.history_rows = r.integer("output.history_rows");
-  s.output.snapshots = r.integer("output.snapshots");
-  s.output.binary_vtu = r.string("output.vtu_encoding") == "binary";
-  s.output.write_facets = r.boolean("output.write_facets");
 }
 
 Scenario convert(Reader& r, const std::string& text) {
@@ -443,11 +362,11 @@ Scenario convert(Reader& r, const std::string& text) {
   Scenario s;
   s.source = r.file;
   s.text = text;
-  convert_specimen_and_generation(r, s);
-  convert_contact_and_solver(r, s);
+  set_bound(r, config::scenario_bindings().scenario, "", s);
+  check_solver(r, s);
   for (const auto& inst : r.instances["plates.*"]) s.plates.push_back(convert_plate(r, s, inst));
   for (const auto& inst : r.instances["bars.*"]) s.bars.push_back(convert_bar(r, s, inst));
-  convert_loading_stop_and_output(r, s);
+  check_control(r, s);
   s.key_line = r.lines;
   check_consistency(r, s);
   config::check_model_size(s);

@@ -1,5 +1,7 @@
 #pragma once
-// A scenario file, validated against the declared schema and turned into typed settings.
+// A scenario file, validated against the declared schema and turned into typed settings. A member
+// initialiser below is its key's default: config/scenario_schema.cpp binds each key to its member
+// and takes the default from here (config/scenario_bindings.hpp).
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -16,7 +18,7 @@ struct SpecimenSettings {
   std::string shape;  // a name in the specimen registry
   Vec3 size = Vec3::Zero();
   Real notch_depth = 0.0;
-  Real notch_width = 0.003;  // config/scenario_schema.cpp's default, kept equal by a test
+  Real notch_width = 0.003;
 };
 
 enum class Grading { Uniform, Fuller };
