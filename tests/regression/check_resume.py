@@ -226,16 +226,16 @@ try:
           "manifest: interrupted by SIGINT, its last checkpoint")
     if ck:
         h = parse_checkpoint(ck[-1][1])
-        check(h["magic"] == b"RCDEMCKP" and h["version"] == 4 and h["bom"] == 0x01020304
+        check(h["magic"] == b"RCDEMCKP" and h["version"] == 5 and h["bom"] == 0x01020304
               and h["size"] == len(h["data"]) and h["step"] == at_step and h["crc_ok"]
               and h["writer"].startswith("rcdem "),
-              f"the checkpoint reads as documented (format 3, {len(h['data'])} bytes, "
+              f"the checkpoint reads as documented (format 5, {len(h['data'])} bytes, "
               f"{len(h['sections'])} sections, CRC-32 checked by zlib)")
         need = {"bodies": 22, "bodies.step": 3, "contacts": 17, "contacts.points": 9,
                 "interface.0": 17, "interface.0.points": 9, "nodes": 35, "plates": 8,
                 "plate_contacts": 21, "pulled_bars": 7, "solver": 11,
                 "history": len(open(os.path.join(ref, "history.csv")).readline().split(",")),
-                "cracks": 7, "run": 8, "snapshots.particles": 1}
+                "cracks": 7, "run": 7, "snapshots.particles": 1}
         bad = [n for n, w in need.items()
                if n not in h["sections"] or h["sections"][n][1] != w]
         check(not bad, f"documented sections and widths present ({bad or 'all'})")

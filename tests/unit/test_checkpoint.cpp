@@ -279,9 +279,9 @@ TEST(Checkpoint, DamagedFilesAreRejectedWithTheReason) {
                 fmt::format("format version {} is newer", io::kCheckpointVersion + 1)),
             std::string::npos);
   std::string older = bytes;
-  older[8] = static_cast<char>(io::kCheckpointVersion - 1);
-  EXPECT_NE(restore_msg(older).find(
-                fmt::format("format version {} is older", io::kCheckpointVersion - 1)),
+  older[8] = static_cast<char>(io::kOldestReadableCheckpointVersion - 1);
+  EXPECT_NE(restore_msg(older).find(fmt::format("format version {} is older",
+                                                io::kOldestReadableCheckpointVersion - 1)),
             std::string::npos);
   EXPECT_NE(restore_msg(bytes + "x").find("data after the end"), std::string::npos);
   // Another scenario's inputs, another specimen.
@@ -426,11 +426,38 @@ TEST(Checkpoint, StateDoesNotDependOnThreadCount) {
 #endif
 }
 
-// The sections' widths are format version 4's (docs/checkpoint.md), now that each struct's
+// A checkpoint's sections: name -> (offset of its header's kind field, width, count).
+struct SectionEntry {
+  std::size_t at;
+  std::uint32_t width;
+  std::uint64_t count;
+};
+std::map<std::string, SectionEntry> section_table(const std::string& file) {
+  const auto u32 = [&](std::size_t at) {
+    std::uint32_t v = 0;
+    std::memcpy(&v, file.data() + at, 4);
+    return v;
+  };
+  std::map<std::string, SectionEntry> sections;
+  std::size_t at = 64 + u32(60);
+  for (std::uint32_t s = 0, n = u32(56); s < n; ++s) {
+    const std::string name = file.substr(at + 4, u32(at));
+    at += 4 + name.size();
+    const std::uint32_t kind = u32(at), width = u32(at + 4);
+    std::uint64_t count = 0;
+    std::memcpy(&count, file.data() + at + 8, 8);
+    sections[name] = {at, width, count};
+    at += 16 + (kind == 1 ? 8 * width * count : count);
+  }
+  EXPECT_EQ(at + 4, file.size());
+  return sections;
+}
+
+// The sections' widths are format version 5's (docs/checkpoint.md), now that each struct's
 // serialize() names its columns and the width follows from their types: a column added or dropped
 // without a new format version fails here, empty tables included (small_run pulls no bar).
-TEST(Checkpoint, SectionWidthsAreThoseOfFormatVersion4) {
-  ASSERT_EQ(io::kCheckpointVersion, 4U);
+TEST(Checkpoint, SectionWidthsAreThoseOfTheFormatVersion) {
+  ASSERT_EQ(io::kCheckpointVersion, 5U);
   const Scenario sc = small_run();
   Simulation sim(sc, build_specimen(sc));
   io::History history(sim, "top");
@@ -441,28 +468,8 @@ TEST(Checkpoint, SectionWidthsAreThoseOfFormatVersion4) {
   for (int i = 0; i < 20; ++i) sim.step();
   history.record(sim);
   const std::string file = io::encode_checkpoint({&sim, &history, &snapshots, &cracks, &loop}, 3);
-  const auto u32 = [&](std::size_t at) {
-    std::uint32_t v = 0;
-    std::memcpy(&v, file.data() + at, 4);
-    return v;
-  };
-  const auto u64 = [&](std::size_t at) {
-    std::uint64_t v = 0;
-    std::memcpy(&v, file.data() + at, 8);
-    return v;
-  };
-  std::map<std::string, std::pair<std::uint32_t, std::uint64_t>> sections;  // width, count
-  std::size_t at = 64 + u32(60);
-  for (std::uint32_t s = 0, n = u32(56); s < n; ++s) {
-    const std::string name = file.substr(at + 4, u32(at));
-    at += 4 + name.size();
-    const std::uint32_t kind = u32(at), width = u32(at + 4);
-    const std::uint64_t count = u64(at + 8);
-    sections[name] = {width, count};
-    at += 16 + (kind == 1 ? 8 * width * count : count);
-  }
-  EXPECT_EQ(at + 4, file.size());
-  const std::map<std::string, std::uint32_t> v4 = {
+  auto sections = section_table(file);
+  const std::map<std::string, std::uint32_t> v5 = {
       {"bodies", 22},
       {"bodies.step", 3},
       {"contacts", 17},
@@ -480,11 +487,54 @@ TEST(Checkpoint, SectionWidthsAreThoseOfFormatVersion4) {
       {"snapshots.facets", 1},
       {"snapshots.bars", 1},
       {"cracks", 7},
-      {"run", 8}};
-  for (const auto& [name, width] : v4) {
+      {"run", 7}};
+  for (const auto& [name, width] : v5) {
     ASSERT_TRUE(sections.count(name)) << name;
-    EXPECT_EQ(sections[name].first, width) << name;
+    EXPECT_EQ(sections[name].width, width) << name;
   }
-  EXPECT_EQ(sections["pulled_bars"].second, 0U);  // an empty table keeps its width
-  EXPECT_EQ(sections["bodies"].second, static_cast<std::uint64_t>(sim.bodies().size()));
+  EXPECT_EQ(sections["pulled_bars"].count, 0U);  // an empty table keeps its width
+  EXPECT_EQ(sections["bodies"].count, static_cast<std::uint64_t>(sim.bodies().size()));
+}
+
+// The same checkpoint in format 4, which held the peak twice in its "run" record.
+std::string as_format4(const std::string& v5) {
+  const SectionEntry run = section_table(v5).at("run");
+  std::string v4 = v5;
+  const std::size_t payload = run.at + 16;
+  v4.insert(payload + 8, v5.substr(payload, 8));  // the peak again, after the peak
+  const std::uint32_t version = 4, width = run.width + 1;
+  std::memcpy(v4.data() + 8, &version, 4);
+  std::memcpy(v4.data() + run.at + 4, &width, 4);
+  const std::uint64_t size = v4.size();
+  std::memcpy(v4.data() + 16, &size, 8);
+  const std::uint32_t crc = io::crc32(v4.data(), v4.size() - 4);
+  std::memcpy(v4.data() + v4.size() - 4, &crc, 4);
+  return v4;
+}
+
+// A file of the previous format (4) restores to the state a format-5 file of the same run holds.
+TEST(Checkpoint, ReadsTheFormatBefore) {
+  ASSERT_EQ(io::kOldestReadableCheckpointVersion, 4U);
+  const Scenario sc = small_run();
+  const Specimen specimen = build_specimen(sc);
+  TempDir dir;
+  Simulation a(sc, specimen);
+  io::History ha(a, "top");
+  io::LoopState la;
+  for (int i = 1; i <= 300; ++i) a.step();
+  ha.record(a);
+  la.peak = 2.5;
+  la.displacement_at_peak = 1e-4;
+  la.history_every = 30;
+  const std::string v5 = io::encode_checkpoint({&a, &ha, nullptr, nullptr, &la}, 5);
+  write_file(dir.path() / "v4.rcp", as_format4(v5));
+  Simulation b(sc, specimen);
+  io::History hb(b, "top");
+  io::LoopState lb;
+  const io::CheckpointParts pb{&b, &hb, nullptr, nullptr, &lb};
+  EXPECT_EQ(io::restore_checkpoint(dir.path() / "v4.rcp", pb, 5).version, 4U);
+  EXPECT_EQ(lb.peak, 2.5);
+  EXPECT_EQ(lb.displacement_at_peak, 1e-4);
+  EXPECT_EQ(lb.history_every, 30);
+  EXPECT_EQ(difference(io::encode_checkpoint(pb, 5), v5), "");
 }

@@ -226,15 +226,15 @@ Parsed parse(const fs::path& file) {
   if (bom != kByteOrderMark)
     throw Reject{fmt::format("byte-order mark {:#010x}, expected {:#010x}: not little-endian", bom,
                              kByteOrderMark)};
-  if (h.version != kCheckpointVersion)
+  if (h.version > kCheckpointVersion || h.version < kOldestReadableCheckpointVersion)
     throw Reject{h.version > kCheckpointVersion
                      ? fmt::format("format version {} is newer than this rcdem reads ({}); "
                                    "resume it with the rcdem that wrote it",
                                    h.version, kCheckpointVersion)
                  : h.version >= 1
-                     ? fmt::format("format version {} is older than this rcdem reads ({}); "
-                                   "resume it with the rcdem that wrote it",
-                                   h.version, kCheckpointVersion)
+                     ? fmt::format("format version {} is older than this rcdem reads ({} to "
+                                   "{}); resume it with the rcdem that wrote it",
+                                   h.version, kOldestReadableCheckpointVersion, kCheckpointVersion)
                      : fmt::format("unknown format version {}", h.version)};
   h.file_size = load_le64(u + 16);
   if (d.size() < h.file_size)

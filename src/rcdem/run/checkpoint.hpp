@@ -28,7 +28,9 @@ class SnapshotWriter;
 class CrackRecord;
 
 inline constexpr char kCheckpointMagic[9] = "RCDEMCKP";
-inline constexpr std::uint32_t kCheckpointVersion = 4;
+// The version written, and the oldest read (docs/checkpoint.md: what changed between them).
+inline constexpr std::uint32_t kCheckpointVersion = 5;
+inline constexpr std::uint32_t kOldestReadableCheckpointVersion = 4;
 
 // CRC-32 (IEEE 802.3, reflected, polynomial 0xEDB88320: the CRC of zlib, PNG and gzip), so that
 // zlib.crc32 in Python checks a file. `crc` continues an earlier call.
@@ -46,17 +48,25 @@ std::uint64_t specimen_fingerprint(const Simulation& sim);
 
 // The run loop's own scalars (run/run.cpp).
 struct LoopState {
-  double peak = 0.0;  // largest load so far
-  double peak_load = 0.0, displacement_at_peak = 0.0, kinetic_over_strain_at_peak = 0.0;
+  double peak = 0.0;  // largest load so far: the peak load
+  double displacement_at_peak = 0.0, kinetic_over_strain_at_peak = 0.0;
   double wall_seconds = 0.0;  // wall time of the sessions so far, up to this checkpoint
   double loop_seconds = 0.0;  // the part of it spent stepping
   std::int64_t history_every = 0, snapshot_every = 0;  // spacing (checked on restore)
 
-  // The checkpoint's "run" record (core/archive.hpp).
+  // The checkpoint's "run" record (core/archive.hpp). Format 4 held the peak twice.
   template <class Archive, class Self>
   static void serialize(Archive& ar, Self& l) {
-    ar.record("run", l.peak, l.peak_load, l.displacement_at_peak, l.kinetic_over_strain_at_peak,
-              l.wall_seconds, l.loop_seconds, l.history_every, l.snapshot_every);
+    if constexpr (Archive::loading) {
+      if (ar.version() == 4) {
+        double peak_again = 0.0;
+        ar.record("run", l.peak, peak_again, l.displacement_at_peak, l.kinetic_over_strain_at_peak,
+                  l.wall_seconds, l.loop_seconds, l.history_every, l.snapshot_every);
+        return;
+      }
+    }
+    ar.record("run", l.peak, l.displacement_at_peak, l.kinetic_over_strain_at_peak, l.wall_seconds,
+              l.loop_seconds, l.history_every, l.snapshot_every);
   }
 };
 

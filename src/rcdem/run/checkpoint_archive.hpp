@@ -246,6 +246,7 @@ class Loader {
   static constexpr bool loading = true;
   Loader(const Parsed& f, bool apply) : f_(f), apply_(apply) {}
   bool applying() const { return apply_; }
+  std::uint32_t version() const { return f_.header.version; }  // of the file being read
 
   template <class... Columns>
   void table(const std::string& name, std::size_t n, Columns... columns) {

@@ -14,7 +14,6 @@ namespace rcdem {
 void PeakTracker::act(const StepView& step) {
   if (!(step.load > s_.peak)) return;
   s_.peak = step.load;
-  s_.peak_load = step.load;
   s_.displacement_at_peak = step.displacement;
   // The strain energy from the balance of SPEC 11 (W = E_s + E_k + D, kept within 1e-4): summing
   // it over a million local points at every new peak would cost a step's time.

@@ -405,7 +405,7 @@ Error RunLoop::with_resume_hint(const Error& e) const {
 RunSummary RunLoop::partial_summary() const {
   RunSummary r;
   r.stop_reason = stop_reason_;
-  r.peak_load = loop_.peak_load;
+  r.peak_load = loop_.peak;
   r.displacement_at_peak = loop_.displacement_at_peak;
   r.kinetic_over_strain_at_peak = loop_.kinetic_over_strain_at_peak;
   r.steps = sim_.steps();
