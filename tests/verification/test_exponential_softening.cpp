@@ -31,7 +31,7 @@ LocalPointConstants point_constants(const ExponentialSoftening& law, Real distan
   c.kn = p.E_bar * kArea / distance;  // (3)
   c.ks = p.alpha * c.kn;              // (4)
   c.fn_max = law.sigma_nt * kArea;    // (5)
-  c.c_max = law.tau * kArea;          // (6)
+  c.c_max = p.tau * kArea;            // (6)
   return c;
 }
 
@@ -161,8 +161,7 @@ TEST(ExponentialSoftening, ShearCapIsTheDamagedCohesionPlusFriction) {
   // What the slip dissipated is the work it did not store, but for the one step that rises to the
   // cap, booked at the capped force (shear_envelope.hpp): a step's slip 0.1 c_max / ks of ~45.
   const Real slip_dissipated = p.dissipated - dissipated0;
-  EXPECT_NEAR((p.work - work0) - (p.stored() - stored0), slip_dissipated,
-              1e-3 * slip_dissipated);
+  EXPECT_NEAR((p.work - work0) - (p.stored() - stored0), slip_dissipated, 1e-3 * slip_dissipated);
 }
 
 // A point whose fracture energy is below its elastic energy at the peak cannot soften: it breaks at

@@ -11,6 +11,7 @@
 #include <cstring>
 #include <map>
 #include <type_traits>
+#include <utility>
 
 #include "rcdem/core/build_info.hpp"
 #include "rcdem/core/error.hpp"
@@ -81,22 +82,20 @@ constexpr std::size_t kTrailer = 4;
 
 // The state, part by part, each part's sections written by its own serialize() (docs/checkpoint.md
 // lists them in this order).
-template <class Archive, class Parts>
-void walk(Archive& ar, const Parts& p) {
-  if constexpr (Archive::loading) {
-    Simulation::serialize(ar, *p.sim);
-    if (p.history) History::serialize(ar, *p.history);
-    if (p.snapshots) SnapshotWriter::serialize(ar, *p.snapshots);
-    if (p.cracks) CrackRecord::serialize(ar, *p.cracks);
-    if (p.loop) LoopState::serialize(ar, *p.loop);
-  } else {
-    Simulation::serialize(ar, static_cast<const Simulation&>(*p.sim));
-    if (p.history) History::serialize(ar, static_cast<const History&>(*p.history));
-    if (p.snapshots)
-      SnapshotWriter::serialize(ar, static_cast<const SnapshotWriter&>(*p.snapshots));
-    if (p.cracks) CrackRecord::serialize(ar, static_cast<const CrackRecord&>(*p.cracks));
-    if (p.loop) LoopState::serialize(ar, static_cast<const LoopState&>(*p.loop));
-  }
+// Saving sees every part as const, so a serialize() cannot change what it writes.
+template <class Archive>
+void walk(Archive& ar, const CheckpointParts& p) {
+  const auto part = [](auto& x) -> auto& {
+    if constexpr (Archive::loading)
+      return x;
+    else
+      return std::as_const(x);
+  };
+  Simulation::serialize(ar, part(*p.sim));
+  if (p.history) History::serialize(ar, part(*p.history));
+  if (p.snapshots) SnapshotWriter::serialize(ar, part(*p.snapshots));
+  if (p.cracks) CrackRecord::serialize(ar, part(*p.cracks));
+  if (p.loop) LoopState::serialize(ar, part(*p.loop));
 }
 
 }  // namespace

@@ -33,7 +33,6 @@ struct PulledBars {
   // The scenario's pulled bars; `bodies`: the count of all bodies (cylinders after the concrete).
   static PulledBars build(const Scenario& sc, const Specimen& specimen, Index bodies);
   const PulledBar* find(const std::string& name) const;
-  bool drives(Index body) const { return driven[static_cast<std::size_t>(body)] >= 0; }
 
   // The checkpoint's "pulled_bars" (core/archive.hpp).
   template <class Archive, class Self>

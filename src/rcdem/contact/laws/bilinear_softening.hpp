@@ -42,7 +42,7 @@ struct BilinearSoftening {
   // The elastic energy held at the point (SPEC 11): fn^2/2kn + |fs|^2/2ks (unloading keeps kn).
   template <typename V>
   Real elastic_energy(const LocalPointConstants& c, const BasicPointState<V>& s) const {
-    return 0.5 * s.fn * s.fn / c.kn + shear_energy(c, s.fs);
+    return spring_energy(c, s);
   }
 
   // Advances the point to the accumulated relative displacement u_n along n (opening positive)

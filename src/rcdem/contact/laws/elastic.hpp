@@ -16,7 +16,7 @@ struct Elastic {
 
   template <typename V>
   Real elastic_energy(const LocalPointConstants& c, const BasicPointState<V>& s) const {
-    return 0.5 * s.fn * s.fn / c.kn + shear_energy(c, s.fs);
+    return spring_energy(c, s);
   }
 
   // Same contract as BilinearSoftening::update; never dissipates.

@@ -27,10 +27,9 @@ namespace rcdem {
 
 struct ExponentialSoftening {
   Real sigma_nt = 0;  // contact tensile strength sigma_n,t [Pa], (5)
-  Real tau = 0;       // contact cohesion tau [Pa], (6)
   Real G_fn = 0;      // tensile fracture energy [J/m^2]
-  Real G_fs = 0;      // not used (only the opening damages)
   Real mu_c = 0;      // friction coefficient, (S5)
+  // The cohesion enters through each point's C_max = tau A_c (6); G_f,s is not used.
 
   // A point may slip in shear while D = 0, so D = 0 does not mean fs = -ks u_s: never condensed.
   static constexpr bool kCondensable = false;

@@ -21,22 +21,20 @@ using ContactLaw = std::variant<BilinearSoftening, Elastic, ExponentialSoftening
 
 struct ContactLawRow {
   std::string_view name;  // the value of contact.law or bars.*.interface_softening
-  std::string_view summary;
   // Softens (has strengths and fracture energies): may be a nonlinear interface's law.
   bool softening;
   ContactLaw (*make)(const ContactParameters& p);
 };
 
 inline constexpr ContactLawRow kContactLaws[] = {
-    {"BL", "bilinear softening (paper 2.4, SPEC 5)", true,
+    {"BL", true,
      [](const ContactParameters& p) -> ContactLaw {
        return BilinearSoftening{p.sigma_nt, p.tau, p.G_fn, p.G_fs, p.mu_c};
      }},
-    {"EL", "elastic, no strength limit (SPEC 5)", false,
-     [](const ContactParameters&) -> ContactLaw { return Elastic{}; }},
-    {"exponential", "scalar damage, exponential softening regularised by G_f,n (YADE's CPM)", true,
+    {"EL", false, [](const ContactParameters&) -> ContactLaw { return Elastic{}; }},
+    {"exponential", true,
      [](const ContactParameters& p) -> ContactLaw {
-       return ExponentialSoftening{p.sigma_nt, p.tau, p.G_fn, p.G_fs, p.mu_c};
+       return ExponentialSoftening{p.sigma_nt, p.G_fn, p.mu_c};
      }},
 };
 

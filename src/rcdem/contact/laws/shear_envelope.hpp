@@ -44,4 +44,10 @@ template <typename V>
   return 0.5 * fs.squaredNorm() / c.ks;
 }
 
+// A point whose springs unload with kn and ks (BL, EL): fn^2/2kn + |fs|^2/2ks (SPEC 11).
+template <typename V>
+Real spring_energy(const LocalPointConstants& c, const BasicPointState<V>& s) {
+  return 0.5 * s.fn * s.fn / c.kn + shear_energy(c, s.fs);
+}
+
 }  // namespace rcdem
