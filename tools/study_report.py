@@ -29,6 +29,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import study_ensemble as ens  # noqa: E402
+
 # SPEC 10 / paper Table 3: bars, f_y [MPa], P_exp, P_paper EL, NL-A, NL-B [kN].
 TABLE3 = {
     "AN0": ("none", None, 11.8, 11.7, None, None),
@@ -311,74 +314,162 @@ def fmt_kn(v):
     return "–" if v is None else f"{v / 1e3:.1f}"
 
 
-def main(study):
-    cases = [r for r in read_csv(os.path.join(study, "cases.csv")) if r["status"] == "finished"]
-    if not cases:
-        sys.exit(f"{study}: no finished case")
-    os.makedirs(os.path.join(study, "curves"), exist_ok=True)
-    data, report = {}, {"cases": {}, "models": {}}
-    for r in cases:
-        case_dir = os.path.join(study, "cases", r["case"])
-        d, p = curve(case_dir)
-        data[r["case"]] = (r["model"], r["interface"], d, p)
-        with open(os.path.join(study, "curves", r["case"] + ".csv"), "w") as f:
-            f.write("deflection_m,load_N\n")
-            f.writelines(f"{a:.8g},{b:.8g}\n" for a, b in zip(d, p))
-        summary = json.load(open(os.path.join(case_dir, "summary.json")))
-        beh = behaviour(d, p)
-        # The run tracks the peak at every step; the history only samples it.
-        beh["peak_load_N"] = summary.get("peak_load_N", beh["peak_load_N"])
-        beh["deflection_at_peak_m"] = abs(summary.get("displacement_at_peak_m", beh["deflection_at_peak_m"]))
-        first = summary.get("first_cracking") or {}
-        rs = reactions(case_dir)
-        k0, k0_qs, k0_ke, k0_imb = initial_stiffness(
-            d, p, first.get("load_N") or beh["cracking_load_N"], *energy_rows(case_dir, p, rs))
-        kt, kb = timoshenko_stiffness(r["model"])
-        # The supports are 20 mm wide: once the beam bends it bears on their inner edges.
-        kt_inner, _ = timoshenko_stiffness(r["model"], SPAN - 0.020)
-        if rs is not None and len(rs):
-            k = int(np.argmax(rs))
-            beh["reaction_peak_N"] = float(rs[k])
-            beh["deflection_at_reaction_peak_m"] = float(d[k])
-        cd, cz = crack_growth(case_dir)
-        peak_d = beh["deflection_at_peak_m"]
-        at_peak = max([z for dd, z in zip(cd, cz) if dd <= peak_d], default=None)
-        report["cases"][r["case"]] = dict(
-            beh, model=r["model"], interface=r["interface"],
-            wall_time_s=float(r["wall_time_s"] or 0), steps=int(r["steps"] or 0),
-            stop_reason=r["stop_reason"], initial_stiffness_N_per_m=k0,
-            initial_stiffness_quasi_static=k0_qs,
-            initial_stiffness_kinetic_over_strain=k0_ke,
-            initial_stiffness_plate_support_imbalance=k0_imb,
-            timoshenko_stiffness_N_per_m=kt, bernoulli_stiffness_N_per_m=kb,
-            timoshenko_stiffness_inner_span_N_per_m=kt_inner,
-            first_cracking=summary.get("first_cracking"),
-            crack_height_at_peak_m=at_peak, crack_height_final_m=(cz[-1] if cz else None),
-            energy_balance_error=summary.get("energy", {}).get("balance_error"))
+def run_report(study, r, case_dir, d, p):
+    """One run's numbers: its behaviour, K0 against Timoshenko, crack heights, first yield."""
+    summary = json.load(open(os.path.join(case_dir, "summary.json")))
+    beh = behaviour(d, p)
+    # The run tracks the peak at every step; the history only samples it.
+    beh["peak_load_N"] = summary.get("peak_load_N", beh["peak_load_N"])
+    beh["deflection_at_peak_m"] = abs(summary.get("displacement_at_peak_m", beh["deflection_at_peak_m"]))
+    first = summary.get("first_cracking") or {}
+    rs = reactions(case_dir)
+    k0, k0_qs, k0_ke, k0_imb = initial_stiffness(
+        d, p, first.get("load_N") or beh["cracking_load_N"], *energy_rows(case_dir, p, rs))
+    kt, kb = timoshenko_stiffness(r["model"])
+    # The supports are 20 mm wide: once the beam bends it bears on their inner edges.
+    kt_inner, _ = timoshenko_stiffness(r["model"], SPAN - 0.020)
+    if rs is not None and len(rs):
+        k = int(np.argmax(rs))
+        beh["reaction_peak_N"] = float(rs[k])
+        beh["deflection_at_reaction_peak_m"] = float(d[k])
+    cd, cz = crack_growth(case_dir)
+    peak_d = beh["deflection_at_peak_m"]
+    at_peak = max([z for dd, z in zip(cd, cz) if dd <= peak_d], default=None)
+    rows = read_csv(os.path.join(case_dir, "history.csv"))
+    yielded = [float(x.get("yielded_nodes") or 0) for x in rows]
+    return dict(
+        beh, case=r["case"], seed=r["seed"], directory=r["directory"], model=r["model"],
+        interface=r["interface"],
+        wall_time_s=float(r["wall_time_s"] or 0), steps=int(r["steps"] or 0),
+        stop_reason=r["stop_reason"], initial_stiffness_N_per_m=k0,
+        initial_stiffness_quasi_static=k0_qs,
+        initial_stiffness_kinetic_over_strain=k0_ke,
+        initial_stiffness_plate_support_imbalance=k0_imb,
+        timoshenko_stiffness_N_per_m=kt, bernoulli_stiffness_N_per_m=kb,
+        timoshenko_stiffness_inner_span_N_per_m=kt_inner,
+        first_cracking=summary.get("first_cracking"),
+        first_yield_deflection_m=ens.first_yield_deflection(d, yielded),
+        crack_height_at_peak_m=at_peak, crack_height_final_m=(cz[-1] if cz else None),
+        energy_balance_error=summary.get("energy", {}).get("balance_error"))
 
-    # Figure 10: one PNG per beam, and the NL-B curves together.
+
+def read_runs(study):
+    """The finished runs of cases.csv, each with its seed and run directory (a study written
+    before --seeds has neither column: each case its own directory, seed unknown)."""
+    rows = [r for r in read_csv(os.path.join(study, "cases.csv")) if r["status"] == "finished"]
+    for r in rows:
+        r["directory"] = r.get("directory") or r["case"]
+        r["seed"] = int(r["seed"]) if r.get("seed") not in (None, "") else None
+    return rows
+
+
+def ensembles(report, data):
+    """Per case over its packings: mean, sd and range of the peak, its deflection and the
+    pre-yield load (read at one deflection per beam, study_ensemble.pre_yield_deflection)."""
+    pre = {}
     for model in TABLE3:
-        mine = [(c, v) for c, v in data.items() if v[0] == model]
-        if not mine:
+        runs = [(data[k][4], v["first_yield_deflection_m"]) for k, v in report["cases"].items()
+                if v["model"] == model and v["interface"] != "none"]
+        pre[model] = ens.pre_yield_deflection(runs) if runs else None
+    out = {}
+    for k, v in report["cases"].items():
+        at = pre.get(v["model"])
+        v["pre_yield_deflection_m"] = at
+        v["pre_yield_load_N"] = ens.load_near(data[k][4], data[k][5], at) if at else None
+    for case in sorted({v["case"] for v in report["cases"].values()}):
+        runs = sorted((v for v in report["cases"].values() if v["case"] == case),
+                      key=lambda v: (v["seed"] is None, v["seed"]))
+        out[case] = {"model": runs[0]["model"], "interface": runs[0]["interface"],
+                     "seeds": [v["seed"] for v in runs], "directories": [v["directory"] for v in runs],
+                     "pre_yield_deflection_m": runs[0]["pre_yield_deflection_m"]}
+        for key in ("peak_load_N", "deflection_at_peak_m", "pre_yield_load_N",
+                    "reaction_peak_N", "wall_time_s", "steps", "energy_balance_error"):
+            out[case][key] = ens.describe([v.get(key) for v in runs])
+    report["ensembles"] = out
+
+
+def orderings(report):
+    """EL >= NL-A >= NL-B per reinforced beam, on the peak and on the pre-yield load, each pair
+    by the paired test over the packings both cases ran on."""
+    result = {}
+    for model in TABLE3:
+        if model == "AN0":
             continue
-        fig, ax = plt.subplots(figsize=(6, 4.2))
-        for c, (_, itf, d, p) in sorted(mine):
-            ax.plot(d * 1e3, p / 1e3, color=COLOURS.get(itf, "grey"), label=itf if itf != "none" else c)
-        ax.axhline(TABLE3[model][2], color="red", ls="--", lw=1, label=f"experiment peak {TABLE3[model][2]} kN")
-        ax.set_xlabel("midspan deflection [mm]")
-        ax.set_ylabel("load [kN]")
-        ax.set_title(f"{model} ({TABLE3[model][0]}): load-deflection (paper Fig. 10)")
-        ax.set_xlim(left=0)
-        ax.set_ylim(bottom=0)
-        ax.legend()
-        ax.grid(alpha=0.3)
-        fig.tight_layout()
-        fig.savefig(os.path.join(study, f"figure10_{model}.png"), dpi=130)
-        plt.close(fig)
+        by = {}
+        for v in report["cases"].values():
+            if v["model"] == model and v["seed"] is not None:
+                by.setdefault(v["interface"], []).append(v)
+        if not all(i in by for i in INTERFACES):
+            continue
+        result[model] = {}
+        for measure in ("peak_load_N", "pre_yield_load_N"):
+            values = {i: {v["seed"]: v[measure] for v in by[i] if v[measure] is not None}
+                      for i in INTERFACES}
+            result[model][measure] = {
+                f"{a} vs {b}": ens.paired_difference(values[a], values[b])
+                for a, b in (("EL", "NL-A"), ("NL-A", "NL-B"))}
+    report["orderings"] = result
+
+
+def mean_of(report, model, key):
+    """{interface: mean of key over the case's packings} for one beam (AN0's case as 'none')."""
+    got = {}
+    for e in report["ensembles"].values():
+        if e["model"] == model and e.get(key):
+            got[e["interface"]] = e[key]["mean"]
+    return got
+
+
+def cell(e, scale=1e3, digits=1):
+    """'mean ± sd' of a describe() result in kN (or mm with scale 1e-3), '–' when missing."""
+    if not e:
+        return "–"
+    m = f"{e['mean'] / scale:.{digits}f}"
+    return m if e["sd"] is None else f"{m} ± {e['sd'] / scale:.{digits}f}"
+
+
+def figure10(study, model, data, report):
+    """One beam's curves, per interface: the band (min-max over packings) and the mean curve, or
+    the single curve of a case run on one packing."""
+    mine = {e_case: e for e_case, e in report["ensembles"].items() if e["model"] == model}
+    if not mine:
+        return
     fig, ax = plt.subplots(figsize=(6, 4.2))
-    for c, (model, itf, d, p) in sorted(data.items()):
-        if itf in ("NL-B", "none"):
-            ax.plot(d * 1e3, p / 1e3, label=f"{model} ({TABLE3.get(model, ('?',))[0]})")
+    for case, e in sorted(mine.items()):
+        itf = e["interface"]
+        colour = COLOURS.get(itf, "grey")
+        label = itf if itf != "none" else case
+        curves = [(data[k][4], data[k][5]) for k in e["directories"]]
+        if len(curves) == 1:
+            ax.plot(curves[0][0] * 1e3, curves[0][1] / 1e3, color=colour, label=label)
+            continue
+        g, mean, lo, hi = ens.band(curves)
+        ax.fill_between(g * 1e3, lo / 1e3, hi / 1e3, color=colour, alpha=0.25, lw=0)
+        ax.plot(g * 1e3, mean / 1e3, color=colour,
+                label=f"{label}: mean of {len(curves)} packings, band min–max")
+    ax.axhline(TABLE3[model][2], color="red", ls="--", lw=1, label=f"experiment peak {TABLE3[model][2]} kN")
+    ax.set_xlabel("midspan deflection [mm]")
+    ax.set_ylabel("load [kN]")
+    ax.set_title(f"{model} ({TABLE3[model][0]}): load-deflection (paper Fig. 10)")
+    ax.set_xlim(left=0)
+    ax.set_ylim(bottom=0)
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(os.path.join(study, f"figure10_{model}.png"), dpi=130)
+    plt.close(fig)
+
+
+def figure10f(study, data, report):
+    """Every beam's NL-B curve (AN0's own), the mean over packings where there are several."""
+    fig, ax = plt.subplots(figsize=(6, 4.2))
+    for case, e in sorted(report["ensembles"].items()):
+        if e["interface"] not in ("NL-B", "none"):
+            continue
+        curves = [(data[k][4], data[k][5]) for k in e["directories"]]
+        g, mean = (curves[0][0], curves[0][1]) if len(curves) == 1 else ens.band(curves)[:2]
+        n = f", mean of {len(curves)}" if len(curves) > 1 else ""
+        ax.plot(g * 1e3, mean / 1e3, label=f"{e['model']} ({TABLE3.get(e['model'], ('?',))[0]}{n})")
     ax.set_xlabel("midspan deflection [mm]")
     ax.set_ylabel("load [kN]")
     ax.set_title("NL-B interface, all beams (paper Fig. 10 f)")
@@ -390,12 +481,13 @@ def main(study):
     fig.savefig(os.path.join(study, "figure10f_NL-B.png"), dpi=130)
     plt.close(fig)
 
-    # Crack growth near midspan.
+
+def figure_crack_height(study, data):
     fig, ax = plt.subplots(figsize=(6, 4.2))
-    for c in sorted(data):
-        cd, cz = crack_growth(os.path.join(study, "cases", c))
+    for k in sorted(data):
+        cd, cz = crack_growth(os.path.join(study, "cases", k))
         if cd:
-            ax.step(np.array(cd) * 1e3, np.array(cz) * 1e3, where="post", label=c)
+            ax.step(np.array(cd) * 1e3, np.array(cz) * 1e3, where="post", label=k)
     ax.axhline(H * 1e3, color="grey", lw=0.8)
     ax.set_xlabel("midspan deflection [mm]")
     ax.set_ylabel("highest broken point within 100 mm of midspan [mm]")
@@ -406,42 +498,45 @@ def main(study):
     fig.savefig(os.path.join(study, "crack_height.png"), dpi=130)
     plt.close(fig)
 
-    for c in sorted(data):
-        case_dir = os.path.join(study, "cases", c)
-        figure9(c, case_dir, study)
-        figure8(c, case_dir, study)
 
-    # Table 3 beside the paper's, the orderings and the transition.
+def table3_lines(report, commit):
+    """Table 3 beside the paper's (means ± sd over packings), and the supports' peaks."""
     lines = ["# Three-point bending: peak loads beside the paper's Table 3", "",
-             "Peak loads in kN. Paper: P_exp (experiment) and the paper's EL, NL-A, NL-B; rcdem: "
-             "this study. Error: rcdem NL-B against the experiment.", "",
+             f"rcdem {commit}. Peak loads in kN. Paper: P_exp (experiment) and the paper's EL, NL-A, "
+             "NL-B; rcdem: this study, mean ± sample standard deviation over the packings a case "
+             "ran on (one value where it ran on one). Error: rcdem NL-B's mean against the "
+             "experiment. EL ≥ NL-A ≥ NL-B compares the means; the ordering section below tests it.",
+             "",
              "| model | bars | f_y (MPa) | P exp | paper EL | paper NL-A | paper NL-B | rcdem EL "
              "| rcdem NL-A | rcdem NL-B | NL-B error | EL ≥ NL-A ≥ NL-B |",
              "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for model, (bars, fy, pexp, pel, pna, pnb) in TABLE3.items():
-        got = {v["interface"]: v["peak_load_N"] for v in report["cases"].values() if v["model"] == model}
+        got = mean_of(report, model, "peak_load_N")
         if not got:
             continue
         mine, err, order = by_interface(model, got, pexp)
+        cells = {e["interface"]: e["peak_load_N"] for e in report["ensembles"].values()
+                 if e["model"] == model}
+        if model == "AN0":
+            cells = {"EL": cells.get("none")}
         report["models"][model] = {"experiment_N": pexp * 1e3, "rcdem_N": mine, "nl_b_error": err,
                                    "ordering_holds": order}
         lines.append(
             f"| {model} | {bars} | {fy or '–'} | {pexp} | {pel or '–'} | {pna or '–'} | {pnb or '–'} "
-            f"| {fmt_kn(mine.get('EL'))} | {fmt_kn(mine.get('NL-A'))} | {fmt_kn(mine.get('NL-B'))} "
+            f"| {cell(cells.get('EL'))} | {cell(cells.get('NL-A'))} | {cell(cells.get('NL-B'))} "
             f"| {'–' if err is None else f'{100 * err:+.1f}%'} "
             f"| {'–' if order is None else ('yes' if order else 'NO')} |")
     lines += ["", "AN0 has no bars: its single case is listed under EL (the paper's AN0 value is "
               "under EL too) and its error is against the experiment.", "",
               "## Peaks of the support reactions", "",
-              "The same peaks read from the sum of the two supports' reactions (the load the beam "
-              "carries; sampled at the history rows) instead of the loading plate's force: a peak "
-              "of the plate's force that the reactions do not reach is a local, dynamic event under "
-              "the plate (a particle struck as the plate advances), not the beam's strength.", "",
+              "The same peaks (means over packings) read from the sum of the two supports' "
+              "reactions (the load the beam carries; sampled at the history rows) instead of the "
+              "loading plate's force: a peak of the plate's force that the reactions do not reach "
+              "is a local, dynamic event under the plate, not the beam's strength.", "",
               "| model | P exp | rcdem EL | rcdem NL-A | rcdem NL-B | NL-B error | EL ≥ NL-A ≥ NL-B |",
               "|---|---|---|---|---|---|---|"]
     for model, (bars, fy, pexp, pel, pna, pnb) in TABLE3.items():
-        got = {v["interface"]: v.get("reaction_peak_N") for v in report["cases"].values()
-               if v["model"] == model}
+        got = mean_of(report, model, "reaction_peak_N")
         if not got:
             continue
         mine, err, order = by_interface(model, got, pexp)
@@ -452,24 +547,79 @@ def main(study):
             f"| {model} | {pexp} | {fmt_kn(mine.get('EL'))} | {fmt_kn(mine.get('NL-A'))} "
             f"| {fmt_kn(mine.get('NL-B'))} | {'–' if err is None else f'{100 * err:+.1f}%'} "
             f"| {'–' if order is None else ('yes' if order else 'NO')} |")
-    lines += ["",
-              "## Behaviour per case", "",
-              f"Cracking load: the largest load before the load first falls {100 * DROP:g}% below it. "
-              "Ductile: past twice the cracking deflection the load rises above the cracking load again, "
-              "or it never drops that much (no drop); brittle: it does not. "
-              "Initial stiffness K0: least-squares slope between 10% and 40% of the load at which the first "
-              "local point broke, over the history rows where the kinetic energy is below "
-              f"{100 * K0_KINETIC_LIMIT:g}% of the strain energy; † where fewer than 3 rows qualify (at the "
-              "study's rates the beam's steady motion keeps the kinetic energy above that until near "
-              "cracking): read over all the window's rows, with their kinetic/strain range and largest "
-              "imbalance between the loading plate and the supports; "
-              "Timoshenko: simply supported, central load, uncracked transformed section, "
-              f"E = {E_CONCRETE / 1e9:.2f} GPa, ν = {NU_CONCRETE}, κ = 5/6.", "",
-              "| case | cracking load (kN) | peak (kN) | δ at peak (mm) | reactions' peak (kN) at δ (mm) "
-              "| class | K0 (kN/mm) | "
-              "Timoshenko, span 600 / 580 mm (kN/mm) | first broken points: x − midspan, z (mm) | crack height at "
-              "peak / end (mm) | stop | steps | wall (s) |",
-              "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    return lines
+
+
+def ensemble_lines(report):
+    """Per case over its packings, and the orderings with their tests."""
+    lines = ["", "## Each case over its packings", "",
+             "Mean ± sample standard deviation [min – max] over the packings (generation.seed) "
+             "the case ran on. Pre-yield load: the load at one deflection per beam, "
+             f"{ens.PRE_YIELD_FRACTION:g} × the smallest deflection at which any of its runs first "
+             "yields a bar (or ends, if none does), averaged over the last "
+             f"{100 * ens.PRE_YIELD_WINDOW:g}% of that deflection: the cracked concrete and the "
+             "bond before the steel yields (tension stiffening).", "",
+             "| case | packings | peak (kN) | δ at peak (mm) | pre-yield load (kN) at δ (mm) "
+             "| steps (mean) | wall (s, mean) | energy balance (largest) |",
+             "|---|---|---|---|---|---|---|---|"]
+    for case, e in sorted(report["ensembles"].items()):
+        rng = (lambda x, s: "" if not x or x["n"] < 2 else f" [{x['min'] / s:.1f} – {x['max'] / s:.1f}]")
+        at = e["pre_yield_deflection_m"]
+        eb = e["energy_balance_error"]
+        lines.append(
+            f"| {case} | {', '.join(str(s) for s in e['seeds'])} "
+            f"| {cell(e['peak_load_N'])}{rng(e['peak_load_N'], 1e3)} "
+            f"| {cell(e['deflection_at_peak_m'], 1e-3, 3)} "
+            f"| {cell(e['pre_yield_load_N'])}{rng(e['pre_yield_load_N'], 1e3)}"
+            f"{'' if at is None else f' at {at * 1e3:.3f}'} "
+            f"| {e['steps']['mean']:.0f} | {e['wall_time_s']['mean']:.0f} "
+            f"| {'–' if not eb else '{:.3f}%'.format(100 * eb['max'])} |")
+    lines += ["", "## EL ≥ NL-A ≥ NL-B, tested", "",
+              "Each pair of interfaces of a beam on the packings both ran on (the same seed gives the "
+              "same packing for every interface): the mean difference, its 95% confidence interval "
+              "(t, two-sided) and the one-sided paired t-test's p-value that the first carries "
+              f"more; 'first > second' where p < {ens.SIGNIFICANCE:g}, 'second > first' where the "
+              "opposite one-sided test gives that, otherwise not distinguishable at that level.", "",
+              "| model | measure | pair | packings | means (kN) | difference (kN) | 95% CI (kN) "
+              "| p (first > second) | verdict |",
+              "|---|---|---|---|---|---|---|---|---|"]
+    names = {"peak_load_N": "peak", "pre_yield_load_N": "pre-yield load"}
+    for model, measures in report["orderings"].items():
+        for measure, pairs in measures.items():
+            for pair, t in pairs.items():
+                if t is None:
+                    lines.append(f"| {model} | {names[measure]} | {pair} | < 2 | – | – | – | – | "
+                                 "no test (one packing) |")
+                    continue
+                lines.append(
+                    f"| {model} | {names[measure]} | {pair} | {t['n']} | {t['mean_first'] / 1e3:.2f} / "
+                    f"{t['mean_second'] / 1e3:.2f} | {t['mean_difference'] / 1e3:+.2f} | "
+                    f"[{t['ci95'][0] / 1e3:+.2f}, {t['ci95'][1] / 1e3:+.2f}] | {t['p_first_greater']:.3f} "
+                    f"| {t['verdict']} |")
+    if not report["orderings"]:
+        lines.append("(no beam ran all three interfaces on common packings)")
+    return lines
+
+
+def behaviour_lines(report):
+    lines = ["",
+             "## Behaviour per run", "",
+             f"Cracking load: the largest load before the load first falls {100 * DROP:g}% below it. "
+             "Ductile: past twice the cracking deflection the load rises above the cracking load again, "
+             "or it never drops that much (no drop); brittle: it does not. "
+             "Initial stiffness K0: least-squares slope between 10% and 40% of the load at which the first "
+             "local point broke, over the history rows where the kinetic energy is below "
+             f"{100 * K0_KINETIC_LIMIT:g}% of the strain energy; † where fewer than 3 rows qualify (at the "
+             "study's rates the beam's steady motion keeps the kinetic energy above that until near "
+             "cracking): read over all the window's rows, with their kinetic/strain range and largest "
+             "imbalance between the loading plate and the supports; "
+             "Timoshenko: simply supported, central load, uncracked transformed section, "
+             f"E = {E_CONCRETE / 1e9:.2f} GPa, ν = {NU_CONCRETE}, κ = 5/6.", "",
+             "| run | cracking load (kN) | peak (kN) | δ at peak (mm) | reactions' peak (kN) at δ (mm) "
+             "| class | K0 (kN/mm) | "
+             "Timoshenko, span 600 / 580 mm (kN/mm) | first broken points: x − midspan, z (mm) | crack height at "
+             "peak / end (mm) | stop | steps | wall (s) |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for c, v in sorted(report["cases"].items()):
         fc = v["first_cracking"]
         where = ("–" if not fc else
@@ -483,20 +633,75 @@ def main(study):
             f"{k0_cell(v)} | {v['timoshenko_stiffness_N_per_m'] / 1e6:.1f} / {v['timoshenko_stiffness_inner_span_N_per_m'] / 1e6:.1f} | "
             f"{where} | {'–' if hp is None else f'{hp * 1e3:.0f}'} / {'–' if hf is None else f'{hf * 1e3:.0f}'} | "
             f"{v['stop_reason']} | {v['steps']} | {v['wall_time_s']:.0f} |")
-    # The transition: the first beam, in order of steel, whose NL-B case is ductile after brittle ones.
-    classes = []
+    return lines
+
+
+def transition_lines(report):
+    """The first beam, in order of steel, whose NL-B runs are mostly ductile after a beam whose
+    runs are mostly brittle (AN0: its own case)."""
+    classes, counts = [], {}
     for model in TABLE3:
-        pick = [v for v in report["cases"].values() if v["model"] == model and v["interface"] in ("NL-B", "none")]
-        if pick:
-            classes.append((model, pick[0]["class"]))
+        runs = [v for v in report["cases"].values()
+                if v["model"] == model and v["interface"] in ("NL-B", "none")]
+        if not runs:
+            continue
+        ductile = sum(v["class"].startswith("ductile") for v in runs)
+        counts[model] = (ductile, len(runs))
+        classes.append((model, "ductile" if 2 * ductile > len(runs) else "brittle"))
     transition = next((m for (m, k), (_, kp) in zip(classes[1:], classes[:-1])
-                       if k.startswith("ductile") and kp == "brittle"), None)
+                       if k == "ductile" and kp == "brittle"), None)
     report["classes_nl_b"] = dict(classes)
     report["transition_at"] = transition
-    lines += ["", "## Brittle-to-ductile transition", "",
-              "NL-B (AN0: no bars): " + ", ".join(f"{m} {k}" for m, k in classes) + ".",
-              f"Transition (first ductile beam after a brittle one): {transition or 'not seen'}"
-              f"{' (' + TABLE3[transition][0] + ')' if transition else ''}; paper: at 2Φ5 (AN2)."]
+    return ["", "## Brittle-to-ductile transition", "",
+            "NL-B (AN0: no bars), ductile runs of all: "
+            + ", ".join(f"{m} {k} ({counts[m][0]}/{counts[m][1]})" for m, k in classes) + ".",
+            f"Transition (first mostly ductile beam after a mostly brittle one): {transition or 'not seen'}"
+            f"{' (' + TABLE3[transition][0] + ')' if transition else ''}; paper: at 2Φ5 (AN2)."]
+
+
+def commit_of(study, runs):
+    """The rcdem commit(s) that ran the study's runs, from their manifests."""
+    found = set()
+    for r in runs:
+        try:
+            m = json.load(open(os.path.join(study, "cases", r["directory"], "manifest.json")))
+        except (OSError, ValueError):
+            continue
+        for s in m.get("sessions", [m]):
+            if s.get("git_hash"):
+                found.add(s["git_hash"])
+    return "commit " + ", ".join(sorted(found)) if found else "commit not recorded"
+
+
+def main(study):
+    runs = read_runs(study)
+    if not runs:
+        sys.exit(f"{study}: no finished case")
+    os.makedirs(os.path.join(study, "curves"), exist_ok=True)
+    data, report = {}, {"cases": {}, "models": {}}
+    for r in runs:
+        k = r["directory"]
+        case_dir = os.path.join(study, "cases", k)
+        d, p = curve(case_dir)
+        data[k] = (r["case"], r["seed"], r["model"], r["interface"], d, p)
+        with open(os.path.join(study, "curves", k + ".csv"), "w") as f:
+            f.write("deflection_m,load_N\n")
+            f.writelines(f"{a:.8g},{b:.8g}\n" for a, b in zip(d, p))
+        report["cases"][k] = run_report(study, r, case_dir, d, p)
+    ensembles(report, data)
+    orderings(report)
+    for model in TABLE3:
+        figure10(study, model, data, report)
+    figure10f(study, data, report)
+    figure_crack_height(study, data)
+    for k in sorted(data):
+        case_dir = os.path.join(study, "cases", k)
+        figure9(k, case_dir, study)
+        figure8(k, case_dir, study)
+    commit = commit_of(study, runs)
+    report["commit"] = commit
+    lines = (table3_lines(report, commit) + ensemble_lines(report) + behaviour_lines(report)
+             + transition_lines(report))
     with open(os.path.join(study, "table3.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
     with open(os.path.join(study, "report.json"), "w") as f:

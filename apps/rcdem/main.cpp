@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -12,10 +13,13 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <thread>
 
 #include "rcdem/calibration/calibrate.hpp"
 #include "rcdem/config/scenario.hpp"
+#include "rcdem/config/scenario_seed.hpp"
+#include "rcdem/config/scenario_text.hpp"
 #include "rcdem/config/schema.hpp"
 #include "rcdem/core/build_info.hpp"
 #include "rcdem/core/error.hpp"
@@ -116,8 +120,19 @@ std::string recorded_checkpoint_every(const fs::path& dir) {
   return m["checkpoint_every"].get<std::string>();
 }
 
+// The scenario file, on packing `seed` when given: its text with generation.seed set, so that
+// the run directory's scenario.toml is the scenario as run.
+rcdem::Scenario load_run_scenario(const fs::path& path, std::optional<std::uint64_t> seed) {
+  if (!seed) return rcdem::load_scenario(path);
+  const std::string text = rcdem::config::with_generation_seed(
+      rcdem::config::read_scenario_file(path, "scenario"), path.string(), *seed);
+  rcdem::Scenario s = rcdem::parse_scenario(text, path.string());
+  s.source = path;
+  return s;
+}
+
 int run(const fs::path& scenario_path, fs::path out, bool force, const fs::path& resume,
-        std::string checkpoint_every, bool checkpoint_every_given,
+        std::string checkpoint_every, bool checkpoint_every_given, std::optional<std::uint64_t> seed,
         const std::vector<std::string>& command) {
   rcdem::RunOptions options;
   options.handle_signals = true;
@@ -133,9 +148,11 @@ int run(const fs::path& scenario_path, fs::path out, bool force, const fs::path&
   if (!resume.empty()) {
     if (!scenario_path.empty())
       rcdem::fail("run: give a scenario or --resume DIR, not both (DIR holds its scenario)");
-    if (!out.empty() || force)
-      rcdem::fail("run --resume '{}': the run continues in its own directory; drop -o/--force",
-                  resume.string());
+    if (!out.empty() || force || seed)
+      rcdem::fail(
+          "run --resume '{}': the run continues in its own directory with its own scenario; drop "
+          "-o/--force/--seed",
+          resume.string());
     const rcdem::Scenario scenario = rcdem::run_directory_scenario(resume);
     rcdem::validate_run(scenario);
     if (::access(resume.c_str(), W_OK | X_OK) != 0)
@@ -144,7 +161,7 @@ int run(const fs::path& scenario_path, fs::path out, bool force, const fs::path&
     r = rcdem::run_scenario(scenario, resume, options);
   } else {
     if (scenario_path.empty()) rcdem::fail("run: give a scenario file (or --resume DIR)");
-    const rcdem::Scenario scenario = rcdem::load_scenario(scenario_path);
+    const rcdem::Scenario scenario = load_run_scenario(scenario_path, seed);
     rcdem::validate_run(scenario);
     if (out.empty()) out = default_output(scenario_path);
     rcdem::io::OutputDirectory dir(out, force);
@@ -228,7 +245,8 @@ int calibrate(const fs::path& scenario_path, fs::path out, bool force, double si
 // A study directory is resumed (finished cases kept) when it holds a study.json; any other
 // non-empty directory is refused unless --force.
 int study(const std::string& name, fs::path scenarios, fs::path out, bool force, bool quick,
-          const std::vector<std::string>& cases, int jobs) {
+          const std::vector<std::string>& cases, const std::vector<std::uint64_t>& seeds,
+          int jobs) {
   rcdem::StudyOptions o;
   o.label = name + (quick ? " (quick)" : "");
   o.scenarios = scenarios.empty() ? rcdem::builtin_study_scenarios(name, quick) : scenarios;
@@ -238,6 +256,11 @@ int study(const std::string& name, fs::path scenarios, fs::path out, bool force,
   if (out.empty()) out = fs::path("results") / ("study_" + name + (quick ? "_quick" : ""));
   o.out = out;
   o.cases = cases;
+  for (std::size_t i = 0; i < seeds.size(); ++i)
+    if (std::find(seeds.begin(), seeds.begin() + static_cast<std::ptrdiff_t>(i), seeds[i]) !=
+        seeds.begin() + static_cast<std::ptrdiff_t>(i))
+      rcdem::fail("--seeds: seed {} is given twice", seeds[i]);
+  o.seeds = seeds;
   o.force = force;
   // Quick cases are small: one per core, one thread each, beats one case on every core.
   const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
@@ -289,6 +312,10 @@ int main(int argc, char** argv) {
                    "0 = only on SIGINT/SIGTERM)")
       ->type_name("N|T")
       ->capture_default_str();
+  std::uint64_t run_seed = 0;
+  runc->add_option("--seed", run_seed,
+                   "Run on another packing: generation.seed set to N (kept in DIR/scenario.toml)")
+      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{9'000'000'000'000'000}));
 
   double size = 0.160, rate_factor = 1.0, tolerance = 0.05;
   int iterations = 8;
@@ -333,6 +360,12 @@ int main(int argc, char** argv) {
                 "Coarser particles and faster loading: the whole study in minutes (examples/<name>"
                 "/study/quick)");
   stc->add_option("--cases", cases, "Run only these cases (e.g. AN0,AN2_NL-B)")->delimiter(',');
+  std::vector<std::uint64_t> seeds;
+  stc->add_option("--seeds", seeds,
+                  "Run every case on each of these packings (generation.seed), e.g. 1,2,3: the "
+                  "report gives means, standard deviations and ranges")
+      ->delimiter(',')
+      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{9'000'000'000'000'000}));
   stc->add_option("--scenarios", study_scenarios,
                   "A directory of scenarios to run instead of the built-in ones");
   stc->add_flag("--force", force, "Rerun finished cases");
@@ -354,11 +387,12 @@ int main(int argc, char** argv) {
     if (*runc)
       return run(scenario, out, force, resume, checkpoint_every,
                  runc->count("--checkpoint-every") > 0,
+                 runc->count("--seed") > 0 ? std::optional<std::uint64_t>(run_seed) : std::nullopt,
                  std::vector<std::string>(argv, argv + argc));
     if (*cal)
       return calibrate(scenario, out, force, size, rate_factor, sets, target, tolerance, iterations,
                        peak_only, tension_lever);
-    if (*stc) return study(study_name, study_scenarios, out, force, quick, cases, jobs);
+    if (*stc) return study(study_name, study_scenarios, out, force, quick, cases, seeds, jobs);
     if (*schema) {
       rcdem::config::scenario_schema().print_template(std::cout);
       return 0;

@@ -13,9 +13,12 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 
 #include "rcdem/config/scenario.hpp"
+#include "rcdem/config/scenario_seed.hpp"
+#include "rcdem/config/scenario_text.hpp"
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
 #include "rcdem/io/atomic_file.hpp"
@@ -75,35 +78,41 @@ nlohmann::json read_json(const fs::path& file) {
 
 struct CaseRecord {
   std::string name, model, interface, status;  // status: finished, failed, not run
+  std::uint64_t seed = 0;                      // the packing it runs on
+  std::string dir;                             // its run directory under DIR/cases
   nlohmann::json summary;                      // the case's summary.json when finished
   std::string error;
+  std::string label() const { return dir == name ? name : fmt::format("{} (seed {})", name, seed); }
 };
 
 void write_tables(const fs::path& out, const std::vector<CaseRecord>& cases,
                   const StudyOptions& o) {
-  std::string peaks = "model,interface,peak_load_N,deflection_at_peak_m\n";
+  std::string peaks = "model,interface,seed,peak_load_N,deflection_at_peak_m\n";
   std::string table =
-      "case,model,interface,status,stop_reason,steps,time_step_s,wall_time_s,peak_load_N,"
-      "deflection_at_peak_m,energy_balance_error\n";
+      "case,seed,directory,model,interface,status,stop_reason,steps,time_step_s,wall_time_s,"
+      "peak_load_N,deflection_at_peak_m,energy_balance_error\n";
   nlohmann::json study;
   study["study"] = o.label;
   study["scenarios"] = fs::absolute(o.scenarios).lexically_normal().string();
+  study["seeds"] = o.seeds;
   study["cases"] = nlohmann::json::array();
   for (const auto& c : cases) {
-    nlohmann::json jc = {{"case", c.name}, {"status", c.status}};
+    nlohmann::json jc = {
+        {"case", c.name}, {"seed", c.seed}, {"directory", c.dir}, {"status", c.status}};
     if (!c.error.empty()) jc["error"] = c.error;
     if (c.status == "finished") {
       const auto& s = c.summary;
-      peaks += fmt::format("{},{},{:.9g},{:.9g}\n", c.model, c.interface,
+      peaks += fmt::format("{},{},{},{:.9g},{:.9g}\n", c.model, c.interface, c.seed,
                            s.value("peak_load_N", 0.0), s.value("displacement_at_peak_m", 0.0));
       table += fmt::format(
-          "{},{},{},{},{},{},{:.6g},{:.1f},{:.9g},{:.9g},{:.3g}\n", c.name, c.model, c.interface,
-          c.status, s.value("stop_reason", ""), s.value("steps", 0L), s.value("time_step_s", 0.0),
+          "{},{},{},{},{},{},{},{},{:.6g},{:.1f},{:.9g},{:.9g},{:.3g}\n", c.name, c.seed, c.dir,
+          c.model, c.interface, c.status, s.value("stop_reason", ""), s.value("steps", 0L), s.value("time_step_s", 0.0),
           s.value("seconds", 0.0), s.value("peak_load_N", 0.0),
           s.value("displacement_at_peak_m", 0.0), s["energy"].value("balance_error", 0.0));
       jc["wall_time_s"] = s.value("seconds", 0.0);
     } else {
-      table += fmt::format("{},{},{},{},,,,,,,\n", c.name, c.model, c.interface, c.status);
+      table += fmt::format("{},{},{},{},{},{},,,,,,,\n", c.name, c.seed, c.dir, c.model,
+                           c.interface, c.status);
     }
     study["cases"].push_back(jc);
   }
@@ -112,9 +121,10 @@ void write_tables(const fs::path& out, const std::vector<CaseRecord>& cases,
   io::write_file_atomically(out / "study.json", study.dump(2) + "\n");
 }
 
-// `rcdem run SCENARIO -o DIR --force` (or `rcdem run --resume DIR`) as a child process, output
-// to DIR/run.log (appended to on a resume).
-pid_t spawn_run(const fs::path& scenario, const fs::path& dir, int threads, bool resume) {
+// `rcdem run SCENARIO -o DIR --force [--seed N]` (or `rcdem run --resume DIR`) as a child
+// process, output to DIR/run.log (appended to on a resume).
+pid_t spawn_run(const fs::path& scenario, const fs::path& dir, int threads, bool resume,
+                std::optional<std::uint64_t> seed) {
   // Through /proc/self/exe, not its target: the binary may be rebuilt while a study runs, and
   // the link still reaches the one that is running.
   const std::string exe = "/proc/self/exe";
@@ -128,6 +138,7 @@ pid_t spawn_run(const fs::path& scenario, const fs::path& dir, int threads, bool
       resume ? std::vector<std::string>{"rcdem", "run", "--resume", dir.string()}
              : std::vector<std::string>{"rcdem", "run",        scenario.string(),
                                         "-o",    dir.string(), "--force"};
+  if (!resume && seed) args.insert(args.end(), {"--seed", std::to_string(*seed)});
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -177,9 +188,16 @@ fs::path builtin_study_scenarios(const std::string& name, bool quick) {
 
 namespace {
 
-// The cases of a study that --cases selects, each read and checked before anything runs: a typo
-// in the last case should not surface hours into the study.
-std::vector<std::pair<fs::path, Scenario>> load_cases(const StudyOptions& o) {
+// One run of a study: a case's scenario on one packing.
+struct StudyCase {
+  fs::path file;
+  Scenario scenario;
+  std::optional<std::uint64_t> seed;  // --seeds' value, or none: the scenario's own
+};
+
+// The runs of a study that --cases and --seeds select, each read and checked before anything
+// runs: a typo in the last case should not surface hours into the study.
+std::vector<StudyCase> load_cases(const StudyOptions& o) {
   const std::vector<fs::path> files = list_scenarios(o.scenarios);
   std::set<std::string> wanted(o.cases.begin(), o.cases.end());
   for (const auto& w : wanted) {
@@ -190,12 +208,20 @@ std::vector<std::pair<fs::path, Scenario>> load_cases(const StudyOptions& o) {
       fail("--cases: no case '{}' in {} (the cases are: {})", w, o.scenarios.string(), known);
     }
   }
-  std::vector<std::pair<fs::path, Scenario>> todo;
+  std::vector<std::optional<std::uint64_t>> seeds(o.seeds.begin(), o.seeds.end());
+  if (seeds.empty()) seeds.push_back(std::nullopt);
+  std::vector<StudyCase> todo;
   for (const auto& f : files) {
     if (!wanted.empty() && !wanted.count(f.stem().string())) continue;
-    Scenario s = load_scenario(f);
-    validate_run(s);
-    todo.emplace_back(f, std::move(s));
+    const std::string text = config::read_scenario_file(f, "scenario");
+    for (const auto& seed : seeds) {
+      Scenario s =
+          parse_scenario(seed ? config::with_generation_seed(text, f.string(), *seed) : text,
+                         f.string());
+      s.source = f;
+      validate_run(s);
+      todo.push_back({f, std::move(s), seed});
+    }
   }
   return todo;
 }
@@ -205,7 +231,7 @@ std::vector<std::pair<fs::path, Scenario>> load_cases(const StudyOptions& o) {
 // where it stopped, and small specimens scale better across processes than across threads.
 class StudyRun {
  public:
-  StudyRun(const StudyOptions& o, std::vector<std::pair<fs::path, Scenario>> todo)
+  StudyRun(const StudyOptions& o, std::vector<StudyCase> todo)
       : o_(o), todo_(std::move(todo)), quiet_(Progress::quiet_default()) {
     for (std::size_t i = 0; i < todo_.size(); ++i) records_.push_back(initial_record(i));
     write_tables(o_.out, records_, o_);
@@ -222,7 +248,7 @@ class StudyRun {
   void start_next(std::map<pid_t, std::size_t>& running, std::size_t& next);
 
   const StudyOptions& o_;
-  std::vector<std::pair<fs::path, Scenario>> todo_;
+  std::vector<StudyCase> todo_;
   bool quiet_;
   std::vector<CaseRecord> records_;
   std::vector<std::size_t> pending_;
@@ -232,18 +258,20 @@ class StudyRun {
 
 // A case with a summary.json is finished (unless --force); any other is pending.
 CaseRecord StudyRun::initial_record(std::size_t i) {
-  const auto& [file, sc] = todo_[i];
+  const StudyCase& sc = todo_[i];
   CaseRecord rec;
-  rec.name = file.stem().string();
+  rec.name = sc.file.stem().string();
   rec.model = rec.name.substr(0, rec.name.find('_'));
-  rec.interface = interface_name(sc);
+  rec.interface = interface_name(sc.scenario);
+  rec.seed = sc.scenario.generation.seed;
+  rec.dir = sc.seed ? fmt::format("{}_seed{}", rec.name, *sc.seed) : rec.name;
   rec.status = "not run";
-  const fs::path summary = o_.out / "cases" / rec.name / "summary.json";
+  const fs::path summary = o_.out / "cases" / rec.dir / "summary.json";
   if (fs::exists(summary) && !o_.force) {
     rec.summary = read_json(summary);
     rec.status = "finished";
     if (!quiet_)
-      fmt::print(stderr, "{}: finished earlier (peak {:.4g} kN), not rerun\n", rec.name,
+      fmt::print(stderr, "{}: finished earlier (peak {:.4g} kN), not rerun\n", rec.label(),
                  rec.summary.value("peak_load_N", 0.0) / 1e3);
   } else {
     pending_.push_back(i);
@@ -254,7 +282,7 @@ CaseRecord StudyRun::initial_record(std::size_t i) {
 // A case directory without summary.json nor a checkpoint (interrupted during its set-up):
 // cleared, and the case starts again.
 fs::path StudyRun::prepare(std::size_t i) {
-  const fs::path dir = o_.out / "cases" / records_[i].name;
+  const fs::path dir = o_.out / "cases" / records_[i].dir;
   std::error_code e;
   if (fs::exists(dir)) {
     { const io::RunLock idle(dir, true); }  // refused while a run started by hand is live in it
@@ -269,18 +297,18 @@ void StudyRun::finish(std::size_t i, const std::string& error) {
   CaseRecord& rec = records_[i];
   ++done_;
   if (error.empty()) {
-    rec.summary = read_json(o_.out / "cases" / rec.name / "summary.json");
+    rec.summary = read_json(o_.out / "cases" / rec.dir / "summary.json");
     rec.status = "finished";
     if (!quiet_)
       fmt::print(stderr, "[{}/{}] {}: finished, peak {:.4g} kN, {:.0f} s\n", done_, pending_.size(),
-                 rec.name, rec.summary.value("peak_load_N", 0.0) / 1e3,
+                 rec.label(), rec.summary.value("peak_load_N", 0.0) / 1e3,
                  rec.summary.value("seconds", 0.0));
   } else {
     // One case failing (an instability, say) should not cost the others.
     rec.status = "failed";
     rec.error = error;
     ++failed_;
-    fmt::print(stderr, "[{}/{}] {}: failed: {}\n", done_, pending_.size(), rec.name, error);
+    fmt::print(stderr, "[{}/{}] {}: failed: {}\n", done_, pending_.size(), rec.label(), error);
   }
   write_tables(o_.out, records_, o_);  // after every case, so a stopped study keeps its table
 }
@@ -289,16 +317,16 @@ void StudyRun::finish(std::size_t i, const std::string& error) {
 void StudyRun::start_next(std::map<pid_t, std::size_t>& running, std::size_t& next) {
   while (next < pending_.size() && static_cast<int>(running.size()) < o_.jobs) {
     const std::size_t i = pending_[next++];
-    const fs::path existing = o_.out / "cases" / records_[i].name;
+    const fs::path existing = o_.out / "cases" / records_[i].dir;
     const bool resume = !o_.force && fs::exists(existing / "scenario.toml") &&
                         !io::list_checkpoints(existing).empty();
     try {
       const fs::path dir = resume ? existing : prepare(i);
       if (!quiet_)
-        fmt::print(stderr, "{}: {} ({}; log {})\n", records_[i].name,
-                   resume ? "resumed from its last checkpoint" : "started", todo_[i].first.string(),
+        fmt::print(stderr, "{}: {} ({}; log {})\n", records_[i].label(),
+                   resume ? "resumed from its last checkpoint" : "started", todo_[i].file.string(),
                    (dir / "run.log").string());
-      running[spawn_run(todo_[i].first, dir, o_.threads_per_job, resume)] = i;
+      running[spawn_run(todo_[i].file, dir, o_.threads_per_job, resume, todo_[i].seed)] = i;
     } catch (const Error& e) {
       finish(i, e.what());
     }
@@ -334,7 +362,7 @@ bool StudyRun::run_pending() {
     if (it == running.end()) continue;
     const std::size_t i = it->second;
     running.erase(it);
-    const fs::path dir = o_.out / "cases" / records_[i].name;
+    const fs::path dir = o_.out / "cases" / records_[i].dir;
     const bool ok =
         WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(dir / "summary.json");
     if (!ok && g_study_signal != 0) {
@@ -353,7 +381,7 @@ bool StudyRun::run_pending() {
 }  // namespace
 
 int run_study(const StudyOptions& o) {
-  std::vector<std::pair<fs::path, Scenario>> todo = load_cases(o);
+  std::vector<StudyCase> todo = load_cases(o);
   const std::size_t cases = todo.size();
   std::error_code ec;
   fs::create_directories(o.out / "cases", ec);

@@ -2,6 +2,7 @@
 // A study: a directory of scenarios run one after another into one output directory, resumable
 // (a case with a summary.json is finished and is not rerun), then summarised by a report script.
 // The paper's three-point bending study (SPEC 10, Table 3) is the built-in one.
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -12,6 +13,9 @@ struct StudyOptions {
   std::filesystem::path scenarios;   // directory of *.toml, one per case
   std::filesystem::path out;         // DIR: DIR/cases/<case>/ per case, tables and figures in DIR
   std::vector<std::string> cases;    // run only these (scenario stems); empty: all
+  // Run every case on each of these packings (generation.seed), into DIR/cases/<case>_seed<N>/;
+  // empty: each case on its scenario's own seed, into DIR/cases/<case>/.
+  std::vector<std::uint64_t> seeds;
   std::string report_script;         // tools/<script> run on DIR at the end ("" for none)
   std::string label;                 // what the study is, for study.json and messages
   bool force = false;                // rerun finished cases

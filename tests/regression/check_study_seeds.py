@@ -1,0 +1,94 @@
+#!/usr/bin/python3
+"""A study over several packings (issue 27): `rcdem study three_point_bending --quick --cases AN0
+--seeds 1,2` runs the quick AN0 beam on two packings, each in its own directory with the seed in
+its scenario.toml; peak_loads.csv and cases.csv carry the seed; report.json and table3.md give
+the mean, standard deviation and range, consistent with the runs; Figure 10 draws the band. The
+seed-1 run is the scenario file's own run to the byte, seed 2 another packing; calling again with
+--seeds 1,2,3 runs only seed 3; `rcdem run --seed` refuses what it must.
+
+usage: check_study_seeds.py RCDEM_BINARY SOURCE_DIR
+"""
+import csv
+import filecmp
+import json
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from checklist import Checklist  # noqa: E402
+
+rcdem, source = sys.argv[1], sys.argv[2]
+checks = Checklist()
+check = checks.check
+scenario = os.path.join(source, "examples", "three_point_bending", "study", "quick", "AN0.toml")
+
+with tempfile.TemporaryDirectory() as tmp:
+    out = os.path.join(tmp, "study")
+    cmd = [rcdem, "study", "three_point_bending", "--quick", "--cases", "AN0", "-o", out]
+    r = subprocess.run(cmd + ["--seeds", "1,2"], capture_output=True, text=True, timeout=900,
+                       cwd=source)
+    check(r.returncode == 0, f"the two-seed quick AN0 study exits 0 ({r.stderr.strip()[-300:]})")
+    runs = {s: os.path.join(out, "cases", f"AN0_seed{s}") for s in (1, 2)}
+    peaks = list(csv.DictReader(open(os.path.join(out, "peak_loads.csv"))))
+    check(peaks and list(peaks[0]) == ["model", "interface", "seed", "peak_load_N",
+                                       "deflection_at_peak_m"]
+          and sorted(p["seed"] for p in peaks) == ["1", "2"],
+          "peak_loads.csv has a seed column and one row per packing")
+    cases = list(csv.DictReader(open(os.path.join(out, "cases.csv"))))
+    check([(c["case"], c["seed"], c["directory"]) for c in cases]
+          == [("AN0", "1", "AN0_seed1"), ("AN0", "2", "AN0_seed2")],
+          "cases.csv names each run's case, seed and directory")
+    for s, d in runs.items():
+        text = open(os.path.join(d, "scenario.toml")).read()
+        check(f"\nseed = {s}\n" in text, f"seed {s}: its scenario.toml holds seed = {s}")
+    # Seed 1 is the file's own seed: the same run as `rcdem run` of the file, to the byte.
+    plain = os.path.join(tmp, "plain")
+    r = subprocess.run([rcdem, "-q", "run", scenario, "-o", plain], capture_output=True, text=True,
+                       timeout=600, cwd=source)
+    same = r.returncode == 0 and filecmp.cmp(os.path.join(plain, "history.csv"),
+                                             os.path.join(runs[1], "history.csv"), shallow=False)
+    check(same, "seed 1's history.csv equals a plain run of the scenario byte for byte")
+    check(not filecmp.cmp(os.path.join(runs[1], "history.csv"),
+                          os.path.join(runs[2], "history.csv"), shallow=False),
+          "seed 2 is another packing (its history differs)")
+    values = [float(p["peak_load_N"]) for p in sorted(peaks, key=lambda p: p["seed"])]
+    rep = json.load(open(os.path.join(out, "report.json")))
+    e = rep["ensembles"]["AN0"]["peak_load_N"]
+    # peak_loads.csv keeps 9 digits, the report reads the runs' summaries.
+    near = (lambda a, b: abs(a - b) < 1e-7 * abs(b))
+    check(e["n"] == 2 and near(e["mean"], statistics.mean(values))
+          and abs(e["sd"] - statistics.stdev(values)) < 1e-7 * e["mean"]
+          and near(e["min"], min(values)) and near(e["max"], max(values)),
+          f"report.json: the peak's mean {e['mean']:.1f} N, sd {e['sd']:.1f} N, range of the two runs")
+    check(e["min"] <= e["mean"] <= e["max"], "the mean lies within [min, max]")
+    d = rep["ensembles"]["AN0"]["deflection_at_peak_m"]
+    check(d["n"] == 2 and d["min"] <= d["mean"] <= d["max"], "the deflection at peak likewise")
+    table = open(os.path.join(out, "table3.md")).read()
+    check(f"{e['mean'] / 1e3:.1f} ± {e['sd'] / 1e3:.1f}" in table
+          and "## Each case over its packings" in table,
+          "table3.md gives mean ± sd and the per-case ensemble table")
+    for f in ("figure10_AN0.png", "figure10f_NL-B.png", "figure9_AN0_seed1.png",
+              "figure9_AN0_seed2.png", "curves/AN0_seed1.csv", "curves/AN0_seed2.csv"):
+        path = os.path.join(out, f)
+        check(os.path.exists(path) and os.path.getsize(path) > 0, f"{f} written")
+    # Resumable per (case, seed): the finished packings are kept, only the new one runs.
+    before = os.path.getmtime(os.path.join(runs[1], "summary.json"))
+    r = subprocess.run(cmd + ["--seeds", "1,2,3"], capture_output=True, text=True, timeout=900,
+                       cwd=source)
+    check(r.returncode == 0 and r.stderr.count("finished earlier") == 2
+          and "AN0 (seed 3): started" in r.stderr
+          and os.path.getmtime(os.path.join(runs[1], "summary.json")) == before,
+          "--seeds 1,2,3 keeps seeds 1 and 2 and runs seed 3")
+    rep = json.load(open(os.path.join(out, "report.json")))
+    check(rep["ensembles"]["AN0"]["peak_load_N"]["n"] == 3, "the report then covers 3 packings")
+    # Refusals.
+    bad = subprocess.run(cmd + ["--seeds", "2,2"], capture_output=True, text=True, timeout=60,
+                         cwd=source)
+    check(bad.returncode == 1 and "seed 2 is given twice" in bad.stderr, "a repeated seed is refused")
+    bad = subprocess.run([rcdem, "run", "--resume", runs[1], "--seed", "3"], capture_output=True,
+                         text=True, timeout=60, cwd=source)
+    check(bad.returncode == 1 and "--seed" in bad.stderr, "--resume with --seed is refused")
+checks.finish()

@@ -1,0 +1,79 @@
+#!/usr/bin/python3
+"""The study report's statistics over packings (tools/study_ensemble.py, issue 27) against values
+worked by hand: mean, sample sd and range; the first yield and the pre-yield deflection and load;
+bands on a common grid; the paired t-test against the closed form of Student's t with 2 degrees
+of freedom, F(t) = 1/2 + t / (2 sqrt(2 + t^2)), in both directions.
+
+usage: check_study_statistics.py SOURCE_DIR
+"""
+import math
+import os
+import sys
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(sys.argv[1], "tools"))
+from checklist import Checklist  # noqa: E402
+import study_ensemble as ens  # noqa: E402
+
+checks = Checklist()
+check = checks.check
+
+
+def close(a, b, tol=1e-12):
+    return abs(a - b) <= tol * max(1.0, abs(b))
+
+
+e = ens.describe([1.0, 2.0, 3.0, 4.0, None])
+check(e["n"] == 4 and close(e["mean"], 2.5) and close(e["sd"], math.sqrt(5 / 3))
+      and e["min"] == 1.0 and e["max"] == 4.0, f"describe: n, mean, sample sd, range ({e})")
+one = ens.describe([7.0])
+check(one["n"] == 1 and one["sd"] is None and one["mean"] == 7.0, "describe: one value has no sd")
+check(ens.describe([None]) is None, "describe: nothing to describe")
+
+d = np.array([0.0, 1e-3, 2e-3, 3e-3])
+check(ens.first_yield_deflection(d, [0, 0, 1, 2]) == 2e-3, "first yield: the first row with one")
+check(ens.first_yield_deflection(d, [0, 0, 0, 0]) is None, "first yield: none")
+pre = ens.pre_yield_deflection([(np.array([0.0, 2e-3]), 1.5e-3), (np.array([0.0, 1.2e-3]), None)])
+check(close(pre, 0.8 * 1.2e-3), f"pre-yield deflection: 0.8 x the smallest of 1.5 and the unyielded "
+      f"run's end 1.2 mm ({pre * 1e3:.4f} mm)")
+
+dd = np.linspace(0.0, 1.0, 11)
+check(close(ens.load_near(dd, 10 * dd, 1.0), 9.5), "load near 1.0: mean of the rows at 0.9 and 1.0")
+check(close(ens.load_near(dd, 10 * dd, 0.55), 5.5), "load near 0.55: interpolated (one row inside)")
+
+g, mean, lo, hi = ens.band([(np.array([0.0, 1.0, 2.0]), np.array([0.0, 1.0, 2.0])),
+                            (np.array([0.0, 1.0]), np.array([0.0, 3.0]))], points=3)
+check(np.allclose(g, [0, 0.5, 1]) and np.allclose(mean, [0, 1, 2]) and np.allclose(lo, [0, 0.5, 1])
+      and np.allclose(hi, [0, 1.5, 3]), "band: common grid to the shorter curve's end, mean, min, max")
+
+
+def p_greater_df2(diffs):
+    """One-sided p of mean > 0 for three paired differences, from the closed form."""
+    n = len(diffs)
+    m = sum(diffs) / n
+    sd = math.sqrt(sum((x - m) ** 2 for x in diffs) / (n - 1))
+    t = m / (sd / math.sqrt(n))
+    return 0.5 - t / (2 * math.sqrt(2 + t * t)), m, sd
+
+
+first = {1: 10.0, 2: 12.0, 3: 11.0}
+second = {1: 9.0, 2: 10.0, 3: 10.5, 4: 99.0}  # seed 4 has no partner: left out
+t = ens.paired_difference(first, second)
+p, m, sd = p_greater_df2([1.0, 2.0, 0.5])
+half = 4.302652729911275 * sd / math.sqrt(3)  # t(0.975, 2)
+check(t["seeds"] == [1, 2, 3] and close(t["mean_difference"], m) and close(t["p_first_greater"], p, 1e-9)
+      and close(t["ci95"][0], m - half, 1e-9) and close(t["ci95"][1], m + half, 1e-9),
+      f"paired test on the common seeds: difference {m:.4f}, p {p:.5f} (closed form), CI ± {half:.4f}")
+check(t["verdict"] == "not distinguishable", f"p = {p:.3f} > 0.05: not distinguishable")
+strong = {1: 8.0, 2: 10.0, 3: 9.2}
+t = ens.paired_difference(first, strong)
+p, _, _ = p_greater_df2([2.0, 2.0, 1.8])
+check(close(t["p_first_greater"], p, 1e-9) and t["verdict"] == "first > second",
+      f"a consistent difference: p {p:.2e}, first > second")
+t = ens.paired_difference(strong, first)
+check(close(t["p_first_greater"], 1 - p, 1e-9) and t["verdict"] == "second > first",
+      "the same pair reversed: second > first")
+check(ens.paired_difference({1: 1.0}, {1: 2.0, 2: 3.0}) is None, "one common seed: no test")
+checks.finish()
