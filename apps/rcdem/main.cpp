@@ -19,7 +19,6 @@
 #include "rcdem/calibration/calibrate.hpp"
 #include "rcdem/config/scenario.hpp"
 #include "rcdem/config/scenario_seed.hpp"
-#include "rcdem/config/scenario_text.hpp"
 #include "rcdem/config/schema.hpp"
 #include "rcdem/core/build_info.hpp"
 #include "rcdem/core/error.hpp"
@@ -120,20 +119,9 @@ std::string recorded_checkpoint_every(const fs::path& dir) {
   return m["checkpoint_every"].get<std::string>();
 }
 
-// The scenario file, on packing `seed` when given: its text with generation.seed set, so that
-// the run directory's scenario.toml is the scenario as run.
-rcdem::Scenario load_run_scenario(const fs::path& path, std::optional<std::uint64_t> seed) {
-  if (!seed) return rcdem::load_scenario(path);
-  const std::string text = rcdem::config::with_generation_seed(
-      rcdem::config::read_scenario_file(path, "scenario"), path.string(), *seed);
-  rcdem::Scenario s = rcdem::parse_scenario(text, path.string());
-  s.source = path;
-  return s;
-}
-
 int run(const fs::path& scenario_path, fs::path out, bool force, const fs::path& resume,
-        std::string checkpoint_every, bool checkpoint_every_given, std::optional<std::uint64_t> seed,
-        const std::vector<std::string>& command) {
+        std::string checkpoint_every, bool checkpoint_every_given,
+        std::optional<std::uint64_t> seed, const std::vector<std::string>& command) {
   rcdem::RunOptions options;
   options.handle_signals = true;
   options.command = command;
@@ -161,7 +149,7 @@ int run(const fs::path& scenario_path, fs::path out, bool force, const fs::path&
     r = rcdem::run_scenario(scenario, resume, options);
   } else {
     if (scenario_path.empty()) rcdem::fail("run: give a scenario file (or --resume DIR)");
-    const rcdem::Scenario scenario = load_run_scenario(scenario_path, seed);
+    const rcdem::Scenario scenario = rcdem::config::load_scenario_on_seed(scenario_path, seed);
     rcdem::validate_run(scenario);
     if (out.empty()) out = default_output(scenario_path);
     rcdem::io::OutputDirectory dir(out, force);

@@ -13,8 +13,7 @@
 namespace rcdem::config {
 namespace {
 
-const char* const kBox =
-    "[specimen]\nshape = \"box\"\nsize = [0.05, 0.05, 0.05]\n";
+const char* const kBox = "[specimen]\nshape = \"box\"\nsize = [0.05, 0.05, 0.05]\n";
 
 std::string message_of(const std::string& text) {
   try {

@@ -1,10 +1,10 @@
 #include "rcdem/config/scenario_seed.hpp"
 
 #include <fmt/format.h>
+#include <toml++/toml.h>
 
 #include <optional>
 #include <sstream>
-#include <toml++/toml.h>
 #include <vector>
 
 #include "rcdem/config/scenario_text.hpp"
@@ -61,8 +61,7 @@ std::string with_generation_seed(const std::string& text, const std::string& sou
   std::vector<std::string> lines = split_lines(text);
   const std::string value = fmt::format("{}", seed);
   const toml::node* generation = table.get("generation");
-  if (generation && !generation->is_table())
-    fail("{}: key 'generation': expected a table", source);
+  if (generation && !generation->is_table()) fail("{}: key 'generation': expected a table", source);
   const toml::node* old = generation ? generation->as_table()->get("seed") : nullptr;
   std::size_t line = 0, begin = 0, end = 0;
   if (old) {
@@ -89,6 +88,16 @@ std::string with_generation_seed(const std::string& text, const std::string& sou
     fail("{}: cannot add generation.seed = {} to this file's generation keys; set it in the file",
          source, seed);
   return out;
+}
+
+Scenario load_scenario_on_seed(const std::filesystem::path& path,
+                               std::optional<std::uint64_t> seed) {
+  if (!seed) return load_scenario(path);
+  Scenario s = parse_scenario(
+      with_generation_seed(read_scenario_file(path, "scenario"), path.string(), *seed),
+      path.string());
+  s.source = path;
+  return s;
 }
 
 }  // namespace rcdem::config

@@ -4,7 +4,11 @@
 // as run and resuming it or running it again gives the same packing (`rcdem run --seed`, a
 // study's `--seeds`).
 #include <cstdint>
+#include <filesystem>
+#include <optional>
 #include <string>
+
+#include "rcdem/config/scenario.hpp"
 
 namespace rcdem::config {
 
@@ -14,5 +18,9 @@ namespace rcdem::config {
 // e.g. a seed set inside an inline table it would have to rewrite.
 std::string with_generation_seed(const std::string& text, const std::string& source,
                                  std::uint64_t seed);
+
+// The scenario file `path` on packing `seed` (none: the file as it is), its text the one run.
+Scenario load_scenario_on_seed(const std::filesystem::path& path,
+                               std::optional<std::uint64_t> seed);
 
 }  // namespace rcdem::config

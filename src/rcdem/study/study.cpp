@@ -18,7 +18,6 @@
 
 #include "rcdem/config/scenario.hpp"
 #include "rcdem/config/scenario_seed.hpp"
-#include "rcdem/config/scenario_text.hpp"
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
 #include "rcdem/io/atomic_file.hpp"
@@ -106,8 +105,8 @@ void write_tables(const fs::path& out, const std::vector<CaseRecord>& cases,
                            s.value("peak_load_N", 0.0), s.value("displacement_at_peak_m", 0.0));
       table += fmt::format(
           "{},{},{},{},{},{},{},{},{:.6g},{:.1f},{:.9g},{:.9g},{:.3g}\n", c.name, c.seed, c.dir,
-          c.model, c.interface, c.status, s.value("stop_reason", ""), s.value("steps", 0L), s.value("time_step_s", 0.0),
-          s.value("seconds", 0.0), s.value("peak_load_N", 0.0),
+          c.model, c.interface, c.status, s.value("stop_reason", ""), s.value("steps", 0L),
+          s.value("time_step_s", 0.0), s.value("seconds", 0.0), s.value("peak_load_N", 0.0),
           s.value("displacement_at_peak_m", 0.0), s["energy"].value("balance_error", 0.0));
       jc["wall_time_s"] = s.value("seconds", 0.0);
     } else {
@@ -213,12 +212,8 @@ std::vector<StudyCase> load_cases(const StudyOptions& o) {
   std::vector<StudyCase> todo;
   for (const auto& f : files) {
     if (!wanted.empty() && !wanted.count(f.stem().string())) continue;
-    const std::string text = config::read_scenario_file(f, "scenario");
     for (const auto& seed : seeds) {
-      Scenario s =
-          parse_scenario(seed ? config::with_generation_seed(text, f.string(), *seed) : text,
-                         f.string());
-      s.source = f;
+      Scenario s = config::load_scenario_on_seed(f, seed);
       validate_run(s);
       todo.push_back({f, std::move(s), seed});
     }

@@ -10,17 +10,17 @@
 namespace rcdem {
 
 struct StudyOptions {
-  std::filesystem::path scenarios;   // directory of *.toml, one per case
-  std::filesystem::path out;         // DIR: DIR/cases/<case>/ per case, tables and figures in DIR
-  std::vector<std::string> cases;    // run only these (scenario stems); empty: all
+  std::filesystem::path scenarios;  // directory of *.toml, one per case
+  std::filesystem::path out;        // DIR: DIR/cases/<case>/ per case, tables and figures in DIR
+  std::vector<std::string> cases;   // run only these (scenario stems); empty: all
   // Run every case on each of these packings (generation.seed), into DIR/cases/<case>_seed<N>/;
   // empty: each case on its scenario's own seed, into DIR/cases/<case>/.
   std::vector<std::uint64_t> seeds;
-  std::string report_script;         // tools/<script> run on DIR at the end ("" for none)
-  std::string label;                 // what the study is, for study.json and messages
-  bool force = false;                // rerun finished cases
-  int jobs = 1;                      // cases run side by side (each a child `rcdem run`)
-  int threads_per_job = 1;           // OpenMP threads of each child
+  std::string report_script;  // tools/<script> run on DIR at the end ("" for none)
+  std::string label;          // what the study is, for study.json and messages
+  bool force = false;         // rerun finished cases
+  int jobs = 1;               // cases run side by side (each a child `rcdem run`)
+  int threads_per_job = 1;    // OpenMP threads of each child
 };
 
 // Where a built-in study's scenarios live: examples/<name>/study (quick: .../study/quick), from
