@@ -64,8 +64,13 @@ def read_csv(path):
         return list(csv.DictReader(f))
 
 
-def curve(case_dir):
-    rows = read_csv(os.path.join(case_dir, "history.csv"))
+def history(case_dir):
+    return read_csv(os.path.join(case_dir, "history.csv"))
+
+
+def curve(case_dir, rows=None):
+    """(deflection, load) per history row of a run (rows: its history.csv, if already read)."""
+    rows = history(case_dir) if rows is None else rows
     summary = os.path.join(case_dir, "summary.json")  # absent while a run is going
     control = json.load(open(summary)).get("control", "load") if os.path.exists(summary) else "load"
     d = np.array([abs(float(r[f"{control}_displacement_m"])) for r in rows])
@@ -73,12 +78,12 @@ def curve(case_dir):
     return d, p
 
 
-def reactions(case_dir):
+def reactions(case_dir, rows=None):
     """The sum of the supports' reactions at each history row (the load the beam carries), or None
     when the case has no plates of those names. In a quasi-static test it equals the loading
     plate's force; a spike of the plate's force that the reactions do not follow is a local,
     dynamic event under the plate."""
-    rows = read_csv(os.path.join(case_dir, "history.csv"))
+    rows = history(case_dir) if rows is None else rows
     if not rows or "support_left_force_N" not in rows[0] or "support_right_force_N" not in rows[0]:
         return None
     return np.array([abs(float(r["support_left_force_N"]) + float(r["support_right_force_N"]))
@@ -152,10 +157,10 @@ def behaviour(d, p):
 K0_KINETIC_LIMIT = 0.05
 
 
-def energy_rows(case_dir, p, rs):
+def energy_rows(case_dir, p, rs, rows=None):
     """Per history row: kinetic / strain energy, and |plate load p - supports' reactions rs| / load
     (NaN without the supports' columns, rs None)."""
-    rows = read_csv(os.path.join(case_dir, "history.csv"))
+    rows = history(case_dir) if rows is None else rows
     ratio = np.array([float(r["kinetic_J"]) / float(r["strain_J"]) if float(r["strain_J"]) > 0
                       else np.inf for r in rows])
     load = np.abs(p)
@@ -314,17 +319,18 @@ def fmt_kn(v):
     return "–" if v is None else f"{v / 1e3:.1f}"
 
 
-def run_report(study, r, case_dir, d, p):
-    """One run's numbers: its behaviour, K0 against Timoshenko, crack heights, first yield."""
+def run_report(r, case_dir, rows, d, p):
+    """One run's numbers: its behaviour, K0 against Timoshenko, crack heights, first yield (rows:
+    its history.csv, read once)."""
     summary = json.load(open(os.path.join(case_dir, "summary.json")))
     beh = behaviour(d, p)
     # The run tracks the peak at every step; the history only samples it.
     beh["peak_load_N"] = summary.get("peak_load_N", beh["peak_load_N"])
     beh["deflection_at_peak_m"] = abs(summary.get("displacement_at_peak_m", beh["deflection_at_peak_m"]))
     first = summary.get("first_cracking") or {}
-    rs = reactions(case_dir)
+    rs = reactions(case_dir, rows)
     k0, k0_qs, k0_ke, k0_imb = initial_stiffness(
-        d, p, first.get("load_N") or beh["cracking_load_N"], *energy_rows(case_dir, p, rs))
+        d, p, first.get("load_N") or beh["cracking_load_N"], *energy_rows(case_dir, p, rs, rows))
     kt, kb = timoshenko_stiffness(r["model"])
     # The supports are 20 mm wide: once the beam bends it bears on their inner edges.
     kt_inner, _ = timoshenko_stiffness(r["model"], SPAN - 0.020)
@@ -335,7 +341,6 @@ def run_report(study, r, case_dir, d, p):
     cd, cz = crack_growth(case_dir)
     peak_d = beh["deflection_at_peak_m"]
     at_peak = max([z for dd, z in zip(cd, cz) if dd <= peak_d], default=None)
-    rows = read_csv(os.path.join(case_dir, "history.csv"))
     yielded = [float(x.get("yielded_nodes") or 0) for x in rows]
     return dict(
         beh, case=r["case"], seed=r["seed"], directory=r["directory"], model=r["model"],
@@ -368,14 +373,14 @@ def ensembles(report, data):
     pre-yield load (read at one deflection per beam, study_ensemble.pre_yield_deflection)."""
     pre = {}
     for model in TABLE3:
-        runs = [(data[k][4], v["first_yield_deflection_m"]) for k, v in report["cases"].items()
+        runs = [(data[k][0], v["first_yield_deflection_m"]) for k, v in report["cases"].items()
                 if v["model"] == model and v["interface"] != "none"]
         pre[model] = ens.pre_yield_deflection(runs) if runs else None
     out = {}
     for k, v in report["cases"].items():
         at = pre.get(v["model"])
         v["pre_yield_deflection_m"] = at
-        v["pre_yield_load_N"] = ens.load_near(data[k][4], data[k][5], at) if at else None
+        v["pre_yield_load_N"] = ens.load_near(*data[k], at) if at else None
     for case in sorted({v["case"] for v in report["cases"].values()}):
         runs = sorted((v for v in report["cases"].values() if v["case"] == case),
                       key=lambda v: (v["seed"] is None, v["seed"]))
@@ -439,7 +444,7 @@ def figure10(study, model, data, report):
         itf = e["interface"]
         colour = COLOURS.get(itf, "grey")
         label = itf if itf != "none" else case
-        curves = [(data[k][4], data[k][5]) for k in e["directories"]]
+        curves = [data[k] for k in e["directories"]]
         if len(curves) == 1:
             ax.plot(curves[0][0] * 1e3, curves[0][1] / 1e3, color=colour, label=label)
             continue
@@ -466,7 +471,7 @@ def figure10f(study, data, report):
     for case, e in sorted(report["ensembles"].items()):
         if e["interface"] not in ("NL-B", "none"):
             continue
-        curves = [(data[k][4], data[k][5]) for k in e["directories"]]
+        curves = [data[k] for k in e["directories"]]
         g, mean = (curves[0][0], curves[0][1]) if len(curves) == 1 else ens.band(curves)[:2]
         n = f", mean of {len(curves)}" if len(curves) > 1 else ""
         ax.plot(g * 1e3, mean / 1e3, label=f"{e['model']} ({TABLE3.get(e['model'], ('?',))[0]}{n})")
@@ -678,16 +683,17 @@ def main(study):
     if not runs:
         sys.exit(f"{study}: no finished case")
     os.makedirs(os.path.join(study, "curves"), exist_ok=True)
-    data, report = {}, {"cases": {}, "models": {}}
+    data, report = {}, {"cases": {}, "models": {}}  # data: run directory -> (deflection, load)
     for r in runs:
         k = r["directory"]
         case_dir = os.path.join(study, "cases", k)
-        d, p = curve(case_dir)
-        data[k] = (r["case"], r["seed"], r["model"], r["interface"], d, p)
+        rows = history(case_dir)
+        d, p = curve(case_dir, rows)
+        data[k] = (d, p)
         with open(os.path.join(study, "curves", k + ".csv"), "w") as f:
             f.write("deflection_m,load_N\n")
             f.writelines(f"{a:.8g},{b:.8g}\n" for a, b in zip(d, p))
-        report["cases"][k] = run_report(study, r, case_dir, d, p)
+        report["cases"][k] = run_report(r, case_dir, rows, d, p)
     ensembles(report, data)
     orderings(report)
     for model in TABLE3:

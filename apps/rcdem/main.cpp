@@ -3,7 +3,6 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
-#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -244,10 +243,6 @@ int study(const std::string& name, fs::path scenarios, fs::path out, bool force,
   if (out.empty()) out = fs::path("results") / ("study_" + name + (quick ? "_quick" : ""));
   o.out = out;
   o.cases = cases;
-  for (std::size_t i = 0; i < seeds.size(); ++i)
-    if (std::find(seeds.begin(), seeds.begin() + static_cast<std::ptrdiff_t>(i), seeds[i]) !=
-        seeds.begin() + static_cast<std::ptrdiff_t>(i))
-      rcdem::fail("--seeds: seed {} is given twice", seeds[i]);
   o.seeds = seeds;
   o.force = force;
   // Quick cases are small: one per core, one thread each, beats one case on every core.

@@ -376,15 +376,6 @@ Scenario convert(Reader& r, const std::string& text) {
   return s;
 }
 
-toml::table parse_toml(const std::string& text, const std::string& source_name) {
-  config::check_scenario_nesting(text, source_name);
-  try {
-    return toml::parse(text, source_name);
-  } catch (const toml::parse_error& e) {
-    fail("{}:{}: TOML syntax error: {}", source_name, e.source().begin.line, e.description());
-  }
-}
-
 // include = ["fragment.toml", ...]: each fragment's keys are read first (paths relative to this
 // file), then this file's, whose values override the fragments' (e.g. a calibrated [contact]
 // fragment with one value changed for a study).
@@ -408,7 +399,7 @@ void read_includes(toml::table& table, const std::string& source_name, Reader& r
     if (f.empty()) fail("{}: an empty file name", at);
     const auto path = std::filesystem::path(f).is_absolute() ? std::filesystem::path(f) : dir / f;
     const toml::table sub =
-        parse_toml(config::read_scenario_file(path, "include", at), path.string());
+        config::parse_scenario_toml(config::read_scenario_file(path, "include", at), path.string());
     if (sub.contains("include")) fail("{}: an included file may not include others", path.string());
     reader.file = path.string();
     reader.read_table(sub, "");
@@ -420,7 +411,7 @@ void read_includes(toml::table& table, const std::string& source_name, Reader& r
 }  // namespace
 
 Scenario parse_scenario(const std::string& text, const std::string& source_name) {
-  toml::table table = parse_toml(text, source_name);
+  toml::table table = config::parse_scenario_toml(text, source_name);
   Reader reader{config::scenario_schema(), source_name, {}, {}, {}};
   read_includes(table, source_name, reader);
   reader.read_table(table, "");

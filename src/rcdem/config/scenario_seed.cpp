@@ -28,15 +28,6 @@ std::string join_lines(const std::vector<std::string>& lines, bool final_newline
   return out;
 }
 
-toml::table parse(const std::string& text, const std::string& source) {
-  check_scenario_nesting(text, source);
-  try {
-    return toml::parse(text, source);
-  } catch (const toml::parse_error& e) {
-    fail("{}:{}: TOML syntax error: {}", source, e.source().begin.line, e.description());
-  }
-}
-
 // The line (0-based) and column range [begin, end) (0-based bytes) of a node on one line, if it
 // lies on one line whose text before it is ASCII (toml++ counts columns in code points).
 bool single_line_span(const toml::node& n, const std::vector<std::string>& lines, std::size_t& line,
@@ -57,7 +48,7 @@ bool single_line_span(const toml::node& n, const std::vector<std::string>& lines
 
 std::string with_generation_seed(const std::string& text, const std::string& source,
                                  std::uint64_t seed) {
-  const toml::table table = parse(text, source);
+  const toml::table table = parse_scenario_toml(text, source);
   std::vector<std::string> lines = split_lines(text);
   const std::string value = fmt::format("{}", seed);
   const toml::node* generation = table.get("generation");

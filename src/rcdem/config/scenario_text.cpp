@@ -155,4 +155,13 @@ void check_scenario_nesting(const std::string& text, const std::string& source) 
   NestingScan(text, source).run();
 }
 
+toml::table parse_scenario_toml(const std::string& text, const std::string& source) {
+  check_scenario_nesting(text, source);
+  try {
+    return toml::parse(text, source);
+  } catch (const toml::parse_error& e) {
+    fail("{}:{}: TOML syntax error: {}", source, e.source().begin.line, e.description());
+  }
+}
+
 }  // namespace rcdem::config

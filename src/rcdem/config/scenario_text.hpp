@@ -4,6 +4,8 @@
 // device such as /dev/zero never ends), and keys, headers, arrays and inline tables nested deeper
 // than any scenario needs are refused before parsing (toml++ recurses on dotted keys and would
 // overflow the stack on tens of thousands of levels).
+#include <toml++/toml.h>
+
 #include <cstddef>
 #include <filesystem>
 #include <string>
@@ -26,5 +28,8 @@ std::string read_scenario_file(const std::filesystem::path& path, const std::str
 // above. A lexical scan, not a parser: it skips strings and comments and leaves every other
 // syntax error to toml++.
 void check_scenario_nesting(const std::string& text, const std::string& source);
+
+// `text` parsed as TOML after the nesting check; a syntax error is refused as "source:line: ...".
+toml::table parse_scenario_toml(const std::string& text, const std::string& source);
 
 }  // namespace rcdem::config

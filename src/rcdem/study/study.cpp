@@ -207,6 +207,9 @@ std::vector<StudyCase> load_cases(const StudyOptions& o) {
       fail("--cases: no case '{}' in {} (the cases are: {})", w, o.scenarios.string(), known);
     }
   }
+  std::set<std::uint64_t> distinct;
+  for (const auto seed : o.seeds)
+    if (!distinct.insert(seed).second) fail("--seeds: seed {} is given twice", seed);
   std::vector<std::optional<std::uint64_t>> seeds(o.seeds.begin(), o.seeds.end());
   if (seeds.empty()) seeds.push_back(std::nullopt);
   std::vector<StudyCase> todo;
