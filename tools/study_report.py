@@ -2,9 +2,12 @@
 """Tables and figures of the three-point bending study (paper 3, SPEC 10) from a study directory.
 
 usage: study_report.py STUDY_DIR
+       study_report.py -o OUT_DIR STUDY_DIR [STUDY_DIR ...]
 
 Reads STUDY_DIR/cases.csv and each finished case's run directory (STUDY_DIR/cases/<case>/:
-summary.json, history.csv, broken_points.csv, the last snapshots) and writes into STUDY_DIR:
+summary.json, history.csv, broken_points.csv, the last snapshots) and writes into STUDY_DIR, or
+with -o one report over the finished runs of several study directories (each (case, seed) in one
+of them only; cases.csv and peak_loads.csv there are theirs, with a column `study`) into OUT_DIR:
   curves/<case>.csv           load-midspan deflection curve (deflection_m, load_N)
   figure10_<model>.png        EL, NL-A, NL-B curves of one beam, experimental peak marked (Fig. 10)
   figure10f_NL-B.png          every beam's NL-B curve (and AN0) (Fig. 10 f)
@@ -359,13 +362,54 @@ def run_report(r, case_dir, rows, d, p):
 
 
 def read_runs(study):
-    """The finished runs of cases.csv, each with its seed and run directory (a study written
-    before --seeds has neither column: each case its own directory, seed unknown)."""
+    """The finished runs of cases.csv, each with its seed, run directory (a study written before
+    --seeds has neither column: each case its own directory, seed unknown) and path."""
     rows = [r for r in read_csv(os.path.join(study, "cases.csv")) if r["status"] == "finished"]
     for r in rows:
         r["directory"] = r.get("directory") or r["case"]
         r["seed"] = int(r["seed"]) if r.get("seed") not in (None, "") else None
+        r["study"] = study
+        r["path"] = os.path.join(study, "cases", r["directory"])
     return rows
+
+
+def read_studies(studies):
+    """The finished runs of several studies; a (case, seed) found in two of them is refused: the
+    report would count one packing twice, or mix two runs of it."""
+    runs, where = [], {}
+    for study in studies:
+        if not os.path.exists(os.path.join(study, "cases.csv")):
+            sys.exit(f"{study}: no cases.csv (not a study directory, or its study has not run)")
+        for r in read_runs(study):
+            key = (r["case"], r["seed"])
+            if key in where:
+                seed = f"seed {r['seed']}" if r["seed"] is not None else "its own seed"
+                sys.exit(f"{r['case']} on {seed} is in both {where[key]} and {study}: "
+                         "a report takes each case and packing from one study only")
+            where[key] = study
+            runs.append(r)
+    # In (case, seed) order whatever the order of the studies: the same runs, the same report.
+    return sorted(runs, key=lambda r: (r["case"], -1 if r["seed"] is None else r["seed"]))
+
+
+def write_merged_tables(out, studies):
+    """cases.csv and peak_loads.csv of several studies in one, each row naming its study (and in
+    cases.csv the commit that ran it)."""
+    for name in ("cases.csv", "peak_loads.csv"):
+        rows = []
+        for study in studies:
+            path = os.path.join(study, name)
+            for row in (read_csv(path) if os.path.exists(path) else []):
+                row = {"study": os.path.abspath(study), **row}
+                if name == "cases.csv":
+                    run = {"path": os.path.join(study, "cases", row.get("directory") or row["case"])}
+                    row["commit"] = commit_of([run]).removeprefix("commit ")
+                rows.append(row)
+        if rows:
+            with open(os.path.join(out, name), "w", newline="") as f:
+                w = csv.DictWriter(f, fieldnames=list(rows[0]), lineterminator="\n")
+                w.writeheader()
+                w.writerows(rows)
 
 
 def ensembles(report, data):
@@ -487,10 +531,10 @@ def figure10f(study, data, report):
     plt.close(fig)
 
 
-def figure_crack_height(study, data):
+def figure_crack_height(study, data, paths):
     fig, ax = plt.subplots(figsize=(6, 4.2))
     for k in sorted(data):
-        cd, cz = crack_growth(os.path.join(study, "cases", k))
+        cd, cz = crack_growth(paths[k])
         if cd:
             ax.step(np.array(cd) * 1e3, np.array(cz) * 1e3, where="post", label=k)
     ax.axhline(H * 1e3, color="grey", lw=0.8)
@@ -661,15 +705,45 @@ def transition_lines(report):
             "NL-B (AN0: no bars), ductile runs of all: "
             + ", ".join(f"{m} {k} ({counts[m][0]}/{counts[m][1]})" for m, k in classes) + ".",
             f"Transition (first mostly ductile beam after a mostly brittle one): {transition or 'not seen'}"
-            f"{' (' + TABLE3[transition][0] + ')' if transition else ''}; paper: at 2Φ5 (AN2)."]
+            f"{' (' + TABLE3[transition][0] + ')' if transition else ''}; paper: at 2Φ5 (AN2)."
+            ] + transition_by_packing(report)
 
 
-def commit_of(study, runs):
+def transition_by_packing(report):
+    """Per packing, the NL-B runs (AN0: its own case) in order of steel and the first ductile
+    beam; the transition is at that beam on this packing when every beam with less steel ran
+    on it and is brittle (the beams with more steel that are brittle are named)."""
+    seeds = sorted({v["seed"] for v in report["cases"].values() if v["seed"] is not None})
+    report["transition_by_seed"] = {}
+    lines = []
+    for seed in seeds:
+        cls = {v["model"]: v["class"].startswith("ductile") for v in report["cases"].values()
+               if v["seed"] == seed and v["interface"] in ("NL-B", "none")}
+        order = [m for m in TABLE3 if m in cls]
+        first = next((m for m in order if cls[m]), None)
+        below = list(TABLE3)[:list(TABLE3).index(first)] if first else []
+        at = first if first and all(m in cls and not cls[m] for m in below) else None
+        report["transition_by_seed"][str(seed)] = at
+        after = [m for m in order if first and list(TABLE3).index(m) > list(TABLE3).index(first)
+                 and not cls[m]]
+        missing = [m for m in below if m not in cls]
+        what = (f"at {at}" if at else f"not established ({', '.join(missing)} not run)" if missing
+                else "not seen")
+        lines.append(f"- packing {seed}: " + ", ".join(
+            f"{m} {'ductile' if cls[m] else 'brittle'}" for m in order) + f" → transition {what}"
+            + (f"; brittle above it: {', '.join(after)}" if after else "") + ".")
+    if not lines:
+        return []
+    return ["", "Per packing (criterion: the first beam, in order of steel, whose NL-B run is "
+            "ductile, every beam with less steel run on that packing and brittle):", ""] + lines
+
+
+def commit_of(runs):
     """The rcdem commit(s) that ran the study's runs, from their manifests."""
     found = set()
     for r in runs:
         try:
-            m = json.load(open(os.path.join(study, "cases", r["directory"], "manifest.json")))
+            m = json.load(open(os.path.join(r["path"], "manifest.json")))
         except (OSError, ValueError):
             continue
         for s in m.get("sessions", [m]):
@@ -678,44 +752,52 @@ def commit_of(study, runs):
     return "commit " + ", ".join(sorted(found)) if found else "commit not recorded"
 
 
-def main(study):
-    runs = read_runs(study)
+def main(studies, out):
+    runs = read_studies(studies)
     if not runs:
-        sys.exit(f"{study}: no finished case")
-    os.makedirs(os.path.join(study, "curves"), exist_ok=True)
+        sys.exit(f"{', '.join(studies)}: no finished case")
+    os.makedirs(os.path.join(out, "curves"), exist_ok=True)
+    if [os.path.abspath(out)] != [os.path.abspath(s) for s in studies]:
+        write_merged_tables(out, studies)
     data, report = {}, {"cases": {}, "models": {}}  # data: run directory -> (deflection, load)
+    paths = {r["directory"]: r["path"] for r in runs}
     for r in runs:
         k = r["directory"]
-        case_dir = os.path.join(study, "cases", k)
-        rows = history(case_dir)
-        d, p = curve(case_dir, rows)
+        rows = history(r["path"])
+        d, p = curve(r["path"], rows)
         data[k] = (d, p)
-        with open(os.path.join(study, "curves", k + ".csv"), "w") as f:
+        with open(os.path.join(out, "curves", k + ".csv"), "w") as f:
             f.write("deflection_m,load_N\n")
             f.writelines(f"{a:.8g},{b:.8g}\n" for a, b in zip(d, p))
-        report["cases"][k] = run_report(r, case_dir, rows, d, p)
+        report["cases"][k] = run_report(r, r["path"], rows, d, p)
     ensembles(report, data)
     orderings(report)
     for model in TABLE3:
-        figure10(study, model, data, report)
-    figure10f(study, data, report)
-    figure_crack_height(study, data)
+        figure10(out, model, data, report)
+    figure10f(out, data, report)
+    figure_crack_height(out, data, paths)
     for k in sorted(data):
-        case_dir = os.path.join(study, "cases", k)
-        figure9(k, case_dir, study)
-        figure8(k, case_dir, study)
-    commit = commit_of(study, runs)
+        figure9(k, paths[k], out)
+        figure8(k, paths[k], out)
+    commit = commit_of(runs)
     report["commit"] = commit
     lines = (table3_lines(report, commit) + ensemble_lines(report) + behaviour_lines(report)
              + transition_lines(report))
-    with open(os.path.join(study, "table3.md"), "w") as f:
+    with open(os.path.join(out, "table3.md"), "w") as f:
         f.write("\n".join(lines) + "\n")
-    with open(os.path.join(study, "report.json"), "w") as f:
+    with open(os.path.join(out, "report.json"), "w") as f:
         json.dump(report, f, indent=2)
     print("\n".join(lines))
 
 
+def parse_args(argv):
+    """(studies, out) from `STUDY_DIR` or `-o OUT_DIR STUDY_DIR...`."""
+    if len(argv) == 1 and not argv[0].startswith("-"):
+        return argv, argv[0]
+    if len(argv) >= 3 and argv[0] == "-o" and not any(a.startswith("-") for a in argv[2:]):
+        return argv[2:], argv[1]
+    sys.exit(__doc__)
+
+
 if __name__ == "__main__":
-    if len(sys.argv) != 2:
-        sys.exit(__doc__)
-    main(sys.argv[1])
+    main(*parse_args(sys.argv[1:]))

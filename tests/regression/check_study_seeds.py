@@ -4,7 +4,8 @@
 its scenario.toml; peak_loads.csv and cases.csv carry the seed; report.json and table3.md give
 the mean, standard deviation and range, consistent with the runs; Figure 10 draws the band. The
 seed-1 run is the scenario file's own run to the byte, seed 2 another packing; calling again with
---seeds 1,2,3 runs only seed 3; `rcdem run --seed` refuses what it must.
+--seeds 1,2,3 runs only seed 3; a report over two study directories (tools/study_report.py -o)
+equals the one directory's; `rcdem run --seed` refuses what it must.
 
 usage: check_study_seeds.py RCDEM_BINARY SOURCE_DIR
 """
@@ -19,6 +20,30 @@ import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from checklist import Checklist  # noqa: E402
+
+
+
+def without_wall_times(obj):
+    """report.json less its wall times: two runs of one packing differ in nothing else."""
+    if isinstance(obj, dict):
+        return {k: without_wall_times(v) for k, v in obj.items() if k != "wall_time_s"}
+    return [without_wall_times(v) for v in obj] if isinstance(obj, list) else obj
+
+
+def table_without_wall_times(path):
+    """table3.md with the cells of every column headed "wall" blanked."""
+    lines, blank = [], set()
+    for line in open(path).read().splitlines():
+        cells = line.split("|")
+        if not line.startswith("|"):
+            blank = set()
+        elif any("wall" in c for c in cells):
+            blank = {i for i, c in enumerate(cells) if "wall" in c}
+        else:
+            cells = ["" if i in blank else c for i, c in enumerate(cells)]
+        lines.append("|".join(cells))
+    return lines
+
 
 rcdem, source = sys.argv[1], sys.argv[2]
 checks = Checklist()
@@ -74,6 +99,21 @@ with tempfile.TemporaryDirectory() as tmp:
               "figure9_AN0_seed2.png", "curves/AN0_seed1.csv", "curves/AN0_seed2.csv"):
         path = os.path.join(out, f)
         check(os.path.exists(path) and os.path.getsize(path) > 0, f"{f} written")
+    # Another study directory with seed 3 alone, and one report over both (-o): the same report,
+    # to the byte, as the one directory that the resume below fills with seeds 1, 2 and 3.
+    out3 = os.path.join(tmp, "study3")
+    r = subprocess.run([rcdem, "study", "three_point_bending", "--quick", "--cases", "AN0", "-o",
+                        out3, "--seeds", "3"], capture_output=True, text=True, timeout=900,
+                       cwd=source)
+    check(r.returncode == 0, "a second study directory with seed 3 alone")
+    merged = os.path.join(tmp, "merged")
+    report = [sys.executable, os.path.join(source, "tools", "study_report.py")]
+    r = subprocess.run(report + ["-o", merged, out, out3], capture_output=True, text=True,
+                       timeout=600)
+    merged_cases = list(csv.DictReader(open(os.path.join(merged, "cases.csv"))))
+    check(r.returncode == 0 and [(c["study"], c["seed"]) for c in merged_cases]
+          == [(os.path.abspath(out), "1"), (os.path.abspath(out), "2"), (os.path.abspath(out3), "3")],
+          "a report over two study directories: cases.csv holds both, each row naming its study")
     # Resumable per (case, seed): the finished packings are kept, only the new one runs.
     before = os.path.getmtime(os.path.join(runs[1], "summary.json"))
     r = subprocess.run(cmd + ["--seeds", "1,2,3"], capture_output=True, text=True, timeout=900,
@@ -84,6 +124,30 @@ with tempfile.TemporaryDirectory() as tmp:
           "--seeds 1,2,3 keeps seeds 1 and 2 and runs seed 3")
     rep = json.load(open(os.path.join(out, "report.json")))
     check(rep["ensembles"]["AN0"]["peak_load_N"]["n"] == 3, "the report then covers 3 packings")
+    check(filecmp.cmp(os.path.join(out3, "cases", "AN0_seed3", "history.csv"),
+                      os.path.join(out, "cases", "AN0_seed3", "history.csv"), shallow=False),
+          "seed 3 runs to the same bits in either directory")
+    check(without_wall_times(json.load(open(os.path.join(merged, "report.json"))))
+          == without_wall_times(rep)
+          and table_without_wall_times(os.path.join(merged, "table3.md"))
+          == table_without_wall_times(os.path.join(out, "table3.md")),
+          "the report over both directories equals the report of the one holding seeds 1, 2 and 3 "
+          "(but for the wall times of the two runs of seed 3)")
+    docs = os.path.join(tmp, "docs")
+    r = subprocess.run([sys.executable, os.path.join(source, "tools", "publish_study.py"), merged,
+                        docs], capture_output=True, text=True, timeout=60)
+    table = open(os.path.join(docs, "cases.md")).read() if r.returncode == 0 else ""
+    steps = sum(int(c["steps"]) for c in merged_cases)
+    check(all(os.path.exists(os.path.join(docs, f)) for f in
+              ("table3.md", "report.json", "cases.csv", "figure10_AN0.png", "figure9_AN0_seed1.png"))
+          and rep["commit"] in table and table.count("\n| AN0 |") == 3
+          and f"| all 3 runs (sums) | | {steps:,} |" in table,
+          "publish_study.py copies the tables and figures and writes cases.md: one row a run, "
+          "the sum of their steps, the commit")
+    r = subprocess.run(report + ["-o", merged, out, out3], capture_output=True, text=True,
+                       timeout=600)
+    check(r.returncode != 0 and "AN0 on seed 3 is in both" in r.stderr,
+          "a packing in two of the studies is refused, naming it")
     # Refusals.
     bad = subprocess.run(cmd + ["--seeds", "2,2"], capture_output=True, text=True, timeout=60,
                          cwd=source)

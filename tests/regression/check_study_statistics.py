@@ -2,7 +2,8 @@
 """The study report's statistics over packings (tools/study_ensemble.py, issue 27) against values
 worked by hand: mean, sample sd and range; the first yield and the pre-yield deflection and load;
 bands on a common grid; the paired t-test against the closed form of Student's t with 2 degrees
-of freedom, F(t) = 1/2 + t / (2 sqrt(2 + t^2)), in both directions.
+of freedom, F(t) = 1/2 + t / (2 sqrt(2 + t^2)), in both directions; the transition at a beam on
+each packing (tools/study_report.py) on hand-made classes.
 
 usage: check_study_statistics.py SOURCE_DIR
 """
@@ -76,4 +77,25 @@ t = ens.paired_difference(strong, first)
 check(close(t["p_first_greater"], 1 - p, 1e-9) and t["verdict"] == "second > first",
       "the same pair reversed: second > first")
 check(ens.paired_difference({1: 1.0}, {1: 2.0, 2: 3.0}) is None, "one common seed: no test")
+
+import study_report  # noqa: E402  (after the statistics: it loads matplotlib)
+
+
+def run(model, interface, seed, ductile):
+    return {"model": model, "interface": interface, "seed": seed,
+            "class": "ductile" if ductile else "brittle"}
+
+
+runs = [run("AN0", "none", 1, False), run("AN1", "NL-B", 1, False), run("AN2", "NL-B", 1, True),
+        run("AN2", "EL", 1, False), run("AN3", "NL-B", 1, True), run("AN4", "NL-B", 1, True),
+        run("AN0", "none", 2, False), run("AN2", "NL-B", 2, True), run("AN4", "NL-B", 2, False),
+        run("AN1", "NL-B", 3, True), run("AN0", "none", 3, False), run("AN2", "NL-B", 4, False)]
+rep = {"cases": {f"r{i}": v for i, v in enumerate(runs)}}
+lines = "\n".join(study_report.transition_by_packing(rep))
+check(rep["transition_by_seed"] == {"1": "AN2", "2": None, "3": "AN1", "4": None},
+      f"transition per packing: at AN2 (an EL run's class ignored), not established without AN1, "
+      f"at AN1, none ({rep['transition_by_seed']})")
+check("packing 2: AN0 brittle, AN2 ductile, AN4 brittle → transition not established (AN1 not run); "
+      "brittle above it: AN4." in lines and "packing 4: AN2 brittle → transition not seen." in lines,
+      "the per-packing lines name the missing beam and a brittle beam above the first ductile one")
 checks.finish()
