@@ -5,7 +5,9 @@ its scenario.toml; peak_loads.csv and cases.csv carry the seed; report.json and 
 the mean, standard deviation and range, consistent with the runs; Figure 10 draws the band. The
 seed-1 run is the scenario file's own run to the byte, seed 2 another packing; calling again with
 --seeds 1,2,3 runs only seed 3; a report over two study directories (tools/study_report.py -o)
-equals the one directory's; `rcdem run --seed` refuses what it must.
+equals the one directory's, and so does the report of the runs packed and unpacked
+(tools/study_archive.py), where the study then runs only what is missing; `rcdem run --seed`
+refuses what it must.
 
 usage: check_study_seeds.py RCDEM_BINARY SOURCE_DIR
 """
@@ -148,6 +150,27 @@ with tempfile.TemporaryDirectory() as tmp:
                        timeout=600)
     check(r.returncode != 0 and "AN0 on seed 3 is in both" in r.stderr,
           "a packing in two of the studies is refused, naming it")
+    # The finished runs in an archive (tools/study_archive.py): the same report from it, and a
+    # study continued from it runs only what is missing.
+    tool = [sys.executable, os.path.join(source, "tools", "study_archive.py")]
+    archive, unpacked = os.path.join(tmp, "study.tar.xz"), os.path.join(tmp, "unpacked")
+    rc = [subprocess.run(c, capture_output=True, text=True, timeout=600).returncode for c in
+          (tool + ["pack", out, archive], tool + ["unpack", archive, unpacked], report + [unpacked])]
+    check(rc == [0, 0, 0] and json.load(open(os.path.join(unpacked, "report.json"))) == rep
+          and filecmp.cmp(os.path.join(unpacked, "table3.md"), os.path.join(out, "table3.md"),
+                          shallow=False),
+          f"packed and unpacked, the three runs give the same report.json and table3.md ({rc})")
+    r = subprocess.run([rcdem, "study", "three_point_bending", "--quick", "--cases", "AN0", "-o",
+                        unpacked, "--seeds", "1,2,3,4"], capture_output=True, text=True,
+                       timeout=900, cwd=source)
+    check(r.returncode == 0 and r.stderr.count("finished earlier") == 3
+          and os.path.exists(os.path.join(unpacked, "cases", "AN0_seed4", "summary.json")),
+          "the study continued in the unpacked directory keeps its 3 runs and runs seed 4 only")
+    again = [subprocess.run(tool + args, capture_output=True, text=True, timeout=60) for args in
+             (["unpack", archive, unpacked], ["pack", out, archive])]
+    check(again[0].returncode != 0 and "not an empty directory" in again[0].stderr
+          and again[1].returncode != 0 and "never overwritten" in again[1].stderr,
+          "an archive is not unpacked over a study, nor packed over an archive")
     # Refusals.
     bad = subprocess.run(cmd + ["--seeds", "2,2"], capture_output=True, text=True, timeout=60,
                          cwd=source)

@@ -1,0 +1,92 @@
+#!/usr/bin/python3
+"""What the study report needs of a study directory's finished runs, in one archive, and back.
+
+usage: study_archive.py pack STUDY_DIR ARCHIVE.tar.xz
+       study_archive.py unpack ARCHIVE.tar.xz STUDY_DIR
+
+A full-size study takes longer than one working session on a small machine; its runs are
+bit-reproducible with the same binary, so a study may be run in parts, and the finished part kept
+(docs/case-study.md, "How to run it"). `pack` keeps the study's cases.csv, peak_loads.csv and
+study.json, and of each finished run (cases.csv) summary.json, history.csv, broken_points.csv,
+manifest.json, scenario.toml and run.log: about a quarter of a megabyte a full-size run, against
+hundreds of megabytes with its snapshots (so Figures 8 and 9, drawn from the last snapshot, are
+not remade from an archive). The archive's bytes depend only on those files (sorted, no owner or
+time stamps). `unpack` writes into a study directory that does not exist or is empty, never over
+earlier results; `rcdem study -o STUDY_DIR` then counts those runs as finished and runs the rest.
+"""
+import csv
+import io
+import os
+import sys
+import tarfile
+
+STUDY_FILES = ("cases.csv", "peak_loads.csv", "study.json")
+RUN_FILES = ("summary.json", "history.csv", "broken_points.csv", "manifest.json",
+             "scenario.toml", "run.log")
+
+
+def finished_runs(study):
+    path = os.path.join(study, "cases.csv")
+    if not os.path.exists(path):
+        sys.exit(f"{study}: no cases.csv (not a study directory, or its study has not run)")
+    rows = [r for r in csv.DictReader(open(path)) if r["status"] == "finished"]
+    return [r.get("directory") or r["case"] for r in rows]
+
+
+def add(tar, path, name):
+    data = open(path, "rb").read()
+    info = tarfile.TarInfo(name)
+    info.size, info.mode, info.mtime = len(data), 0o644, 0
+    tar.addfile(info, io.BytesIO(data))
+
+
+def pack(study, archive):
+    runs = finished_runs(study)
+    if not runs:
+        sys.exit(f"{study}: no finished run to pack")
+    if os.path.exists(archive):
+        sys.exit(f"{archive}: exists (remove it first: an archive is never overwritten)")
+    names = [f for f in STUDY_FILES if os.path.exists(os.path.join(study, f))]
+    for run in sorted(runs):
+        if not os.path.exists(os.path.join(study, "cases", run, "summary.json")):
+            sys.exit(f"{study}: cases.csv says {run} finished but it has no summary.json")
+        names += [f"cases/{run}/{f}" for f in RUN_FILES
+                  if os.path.exists(os.path.join(study, "cases", run, f))]
+    with tarfile.open(archive, "w:xz", format=tarfile.PAX_FORMAT) as tar:
+        for name in names:
+            add(tar, os.path.join(study, name), name)
+    print(f"{archive}: {len(runs)} finished runs of {study}, {os.path.getsize(archive):,} bytes")
+
+
+def safe_members(tar, archive):
+    for m in tar.getmembers():
+        parts = m.name.split("/")
+        if not m.isfile() or m.name.startswith("/") or ".." in parts or not (
+                (len(parts) == 1 and parts[0] in STUDY_FILES)
+                or (len(parts) == 3 and parts[0] == "cases" and parts[2] in RUN_FILES)):
+            sys.exit(f"{archive}: {m.name!r} is not a file of a study archive")
+        yield m
+
+
+def unpack(archive, study):
+    if os.path.exists(study) and (not os.path.isdir(study) or os.listdir(study)):
+        sys.exit(f"{study}: exists and is not an empty directory (an archive is unpacked only "
+                 "into a new study directory)")
+    try:
+        with tarfile.open(archive, "r:xz") as tar:
+            members = list(safe_members(tar, archive))
+            os.makedirs(study, exist_ok=True)
+            for m in members:
+                target = os.path.join(study, m.name)
+                os.makedirs(os.path.dirname(target), exist_ok=True)
+                with open(target, "wb") as f:
+                    f.write(tar.extractfile(m).read())
+    except (tarfile.TarError, OSError, EOFError) as e:
+        sys.exit(f"{archive}: cannot be read as a study archive ({e})")
+    print(f"{study}: {len(finished_runs(study))} finished runs from {archive}")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 4 or sys.argv[1] not in ("pack", "unpack"):
+        sys.exit(__doc__)
+    (pack if sys.argv[1] == "pack" else unpack)(sys.argv[2], sys.argv[3])
