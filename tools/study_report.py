@@ -43,6 +43,7 @@ TABLE3 = {
     "AN3": ("2Φ8", 441, 27.9, 38.9, 33.2, 30.7),
     "AN4": ("2Φ10", 456, 48.7, 43.8, 39.1, 36.0),
 }
+MODELS = list(TABLE3)  # in order of steel
 BARS = {"AN0": (0, 0.0), "AN1": (1, 0.004), "AN2": (2, 0.005), "AN3": (2, 0.008), "AN4": (2, 0.010)}
 INTERFACES = ("EL", "NL-A", "NL-B")
 COLOURS = {"EL": "tab:blue", "NL-A": "tab:orange", "NL-B": "tab:green", "none": "black"}
@@ -361,6 +362,11 @@ def run_report(r, case_dir, rows, d, p):
         energy_balance_error=summary.get("energy", {}).get("balance_error"))
 
 
+def run_path(study, row):
+    """A cases.csv row's run directory (a study written before --seeds has no `directory`)."""
+    return os.path.join(study, "cases", row.get("directory") or row["case"])
+
+
 def read_runs(study):
     """The finished runs of cases.csv, each with its seed, run directory (a study written before
     --seeds has neither column: each case its own directory, seed unknown) and path."""
@@ -369,7 +375,7 @@ def read_runs(study):
         r["directory"] = r.get("directory") or r["case"]
         r["seed"] = int(r["seed"]) if r.get("seed") not in (None, "") else None
         r["study"] = study
-        r["path"] = os.path.join(study, "cases", r["directory"])
+        r["path"] = run_path(study, r)
     return rows
 
 
@@ -402,8 +408,7 @@ def write_merged_tables(out, studies):
             for row in (read_csv(path) if os.path.exists(path) else []):
                 row = {"study": os.path.abspath(study), **row}
                 if name == "cases.csv":
-                    run = {"path": os.path.join(study, "cases", row.get("directory") or row["case"])}
-                    row["commit"] = commit_of([run]).removeprefix("commit ")
+                    row["commit"] = commit_of([{"path": run_path(study, row)}]).removeprefix("commit ")
                 rows.append(row)
         if rows:
             with open(os.path.join(out, name), "w", newline="") as f:
@@ -721,11 +726,10 @@ def transition_by_packing(report):
                if v["seed"] == seed and v["interface"] in ("NL-B", "none")}
         order = [m for m in TABLE3 if m in cls]
         first = next((m for m in order if cls[m]), None)
-        below = list(TABLE3)[:list(TABLE3).index(first)] if first else []
+        below = MODELS[:MODELS.index(first)] if first else []
         at = first if first and all(m in cls and not cls[m] for m in below) else None
         report["transition_by_seed"][str(seed)] = at
-        after = [m for m in order if first and list(TABLE3).index(m) > list(TABLE3).index(first)
-                 and not cls[m]]
+        after = [m for m in order[order.index(first) + 1:] if not cls[m]] if first else []
         missing = [m for m in below if m not in cls]
         what = (f"at {at}" if at else f"not established ({', '.join(missing)} not run)" if missing
                 else "not seen")
