@@ -1,7 +1,8 @@
 #!/bin/bash
 # The three-point bending study of docs/case-study.md (issue 27), by one command:
 #   full size: every case on packing 1 (STUDY_DIR/seed1); AN2 and AN4 with all interfaces, AN0
-#              and AN1 NL-B (the brittle side of the transition) on packings 2 and 3 as well
+#              and AN1 NL-B (the brittle side of the transition) and AN3 NL-B (so that every
+#              beam's NL-B peak has a mean and sd) on packings 2 and 3 as well
 #              (STUDY_DIR/more); one report over both (tools/study_report.py -o STUDY_DIR/report);
 #   quick:     every case on packings 1-5 (STUDY_DIR/quick5);
 # then what docs keeps of each (tools/publish_study.py). Resumable: run it again after an
@@ -18,7 +19,9 @@
 #   RCDEM      the binary (default build/rcdem); it must be the commit that made the finished
 #              runs (their manifests' git_hash), or the study would mix binaries: refused unless
 #              MIXED_COMMITS=1. MORE_CASES: the cases run on packings 2 and 3 (default as above;
-#              "all" for all 13).
+#              "all" for all 13). FULL_JOBS: full-size runs at a time (default 1: on 2 cores one
+#              run with both threads beat two of one thread each, bench/RESULTS.md session 25);
+#              the quick study runs nproc at a time.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 RCDEM=${RCDEM:-build/rcdem}
@@ -38,8 +41,9 @@ fi
 
 D=${1:-results/study_full}
 DOCS=${2:-}
-MORE=${MORE_CASES:-AN0,AN1_NL-B,AN2_EL,AN2_NL-A,AN2_NL-B,AN4_EL,AN4_NL-A,AN4_NL-B}
+MORE=${MORE_CASES:-AN0,AN1_NL-B,AN2_EL,AN2_NL-A,AN2_NL-B,AN3_NL-B,AN4_EL,AN4_NL-A,AN4_NL-B}
 JOBS=$(nproc)
+FULL_JOBS=${FULL_JOBS:-1}
 
 for part in $PARTS; do
   if [ -n "$DOCS" ] && [ -f "$DOCS/full/runs/$part.tar.xz" ] && [ ! -e "$D/$part" ]; then
@@ -58,11 +62,11 @@ for c in $made; do
   fi
 done
 
-"$RCDEM" study three_point_bending -o "$D/seed1" --seeds 1 -j "$JOBS"
+"$RCDEM" study three_point_bending -o "$D/seed1" --seeds 1 -j "$FULL_JOBS"
 if [ "$MORE" = all ]; then
-  "$RCDEM" study three_point_bending -o "$D/more" --seeds 2,3 -j "$JOBS"
+  "$RCDEM" study three_point_bending -o "$D/more" --seeds 2,3 -j "$FULL_JOBS"
 else
-  "$RCDEM" study three_point_bending -o "$D/more" --seeds 2,3 -j "$JOBS" --cases "$MORE"
+  "$RCDEM" study three_point_bending -o "$D/more" --seeds 2,3 -j "$FULL_JOBS" --cases "$MORE"
 fi
 "$RCDEM" study three_point_bending --quick -o "$D/quick5" --seeds 1,2,3,4,5 -j "$JOBS"
 $PY tools/study_report.py -o "$D/report" "$D/seed1" "$D/more"
