@@ -52,20 +52,22 @@ int main(int argc, char** argv) {
         for (rcdem::Index m = net.point_begin[c]; m < net.point_begin[c + 1]; ++m) {
           const auto& kc = net.constants[m];
           const auto i = static_cast<std::size_t>(m);
+          const auto& b = before[i].history;
+          const auto& a = after[i].history;
           // The elastic update from the stored history (bilinear_softening.hpp), to rounding.
-          const double fn = before[i].fn + kc.kn * (after[i].un - before[i].un);
-          const double f1 = before[i].fs1 - kc.ks * (after[i].us1 - before[i].us1);
-          const double f2 = before[i].fs2 - kc.ks * (after[i].us2 - before[i].us2);
+          const double fn = b.fn + kc.kn * (a.un - b.un);
+          const double f1 = b.fs.x - kc.ks * (a.us.x - b.us.x);
+          const double f2 = b.fs.y - kc.ks * (a.us.y - b.us.y);
           const double tol = 1e-9 * kc.fn_max;
-          const bool in = std::abs(after[i].fn - fn) <= tol && std::abs(after[i].fs1 - f1) <= tol &&
-                          std::abs(after[i].fs2 - f2) <= tol && after[i].damage == before[i].damage;
-          if (before[i].damage > 0) {
+          const bool in = std::abs(a.fn - fn) <= tol && std::abs(a.fs.x - f1) <= tol &&
+                          std::abs(a.fs.y - f2) <= tol && a.damage == b.damage;
+          if (b.damage > 0) {
             any_damaged = true;
             ++sum_points;
             sum_points_inside += in;
           }
           all_inside &= in;
-          all_open &= before[i].damage == 1 && after[i].fn == 0;
+          all_open &= b.damage == 1 && a.fn == 0;
         }
         if (!any_damaged) continue;
         ++damaged;

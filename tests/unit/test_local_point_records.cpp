@@ -1,6 +1,7 @@
 // LocalPointRecords (contact/local_point_records.hpp): each record carries its point's position and
 // constants from the network, its history starts empty, the nine history values come in the
-// checkpoint's order (docs/checkpoint.md), and the law's state goes in and out unchanged.
+// checkpoint's order (docs/checkpoint.md), and the law's state goes in and out unchanged (with
+// D written only when it changed, store_state).
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -51,8 +52,8 @@ TEST(LocalPointRecords, RecordsAreTwoAlignedCacheLines) {
   EXPECT_EQ(reinterpret_cast<std::uintptr_t>(r.data()) % 64, 0u);
   // The damage shares the first line with what the step only reads; the rest is the second line.
   const auto* base = reinterpret_cast<const char*>(r.data());
-  EXPECT_LT(reinterpret_cast<const char*>(&r.data()[0].damage) - base, 64);
-  EXPECT_GE(reinterpret_cast<const char*>(&r.data()[0].fn) - base, 64);
+  EXPECT_LT(reinterpret_cast<const char*>(&r.data()[0].history.damage) - base, 64);
+  EXPECT_GE(reinterpret_cast<const char*>(&r.data()[0].history.fn) - base, 64);
 }
 
 TEST(LocalPointRecords, HistoryComesInTheCheckpointsOrder) {
@@ -66,14 +67,14 @@ TEST(LocalPointRecords, HistoryComesInTheCheckpointsOrder) {
   s.un_max = 7;
   s.us_max_sq = 8;
   s.damage = 0.5;
-  r.data()[3].store(s);
+  rcdem::store_state(r.data()[3].history, s);
   std::vector<Real> order;
   r.for_each_history(3, [&](const Real& v) { order.push_back(v); });
   EXPECT_EQ(order, (std::vector<Real>{1, 2, 3, 4, 5, 6, 7, 8, 0.5}));
   // Written through the same order (a checkpoint's load), read back as the law's state.
   Real next = 10;
   r.for_each_history(1, [&](Real& v) { v = next++; });
-  const rcdem::PlanePointState t = r.data()[1].state();
+  const rcdem::PlanePointState t = r.data()[1].history;
   EXPECT_EQ(t.fn, 10);
   EXPECT_EQ(t.fs.x, 11);
   EXPECT_EQ(t.fs.y, 12);

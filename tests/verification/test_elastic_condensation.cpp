@@ -227,7 +227,7 @@ TEST(ElasticCondensation, ContactsNearTheirLimitsGoThroughTheirPoints) {
         damaged_in_condensed += full.cs.point[m].damage > 0;
   EXPECT_EQ(damaged_in_condensed, 0);
   Index damaged = 0;
-  for (const LocalPointRecord& r : full.cs.point.records) damaged += r.damage > 0;
+  for (const LocalPointRecord& r : full.cs.point.records) damaged += r.history.damage > 0;
   EXPECT_GT(damaged, 0) << "the kinematics reach some limits";
   EXPECT_EQ(worse_than_rounding(sp, b, full.cs, fast.cs), 0);
   std::printf("[bound] %lld of %lld contacts condensed, %lld points damaged\n",

@@ -33,6 +33,8 @@ struct PointSums {
 // (bench/RESULTS.md): every lane then pays both divisions and both roots.
 template <typename Law>
 struct PointUpdate {
+  static_assert(std::is_same_v<typename Law::template State<PlaneVec>,
+                               decltype(LocalPointRecord::history)>);
   const Law& law;
   LocalPointRecord* records;
   Vec3 xa0;              // A's centre at t = 0
@@ -47,9 +49,9 @@ struct PointUpdate {
     const Real u_n = disp0.x() + disp(0, 0) * rx + disp(0, 1) * ry + disp(0, 2) * rz;
     const Real u_1 = disp0.y() + disp(1, 0) * rx + disp(1, 1) * ry + disp(1, 2) * rz;
     const Real u_2 = disp0.z() + disp(2, 0) * rx + disp(2, 1) * ry + disp(2, 2) * rz;
-    PlanePointState s = p.state();
+    typename Law::template State<PlaneVec> s = p.history;
     const LawResult res = law.update(p.constants, s, u_n, PlaneVec{u_1, u_2});  // (1)-(2)
-    p.store(s);
+    store_state(p.history, s);
     PointSums out;
     out.point_damage = s.damage;
     // On B; tension (fn > 0) pulls B back towards A.

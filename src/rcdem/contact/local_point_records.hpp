@@ -6,63 +6,35 @@
 // The damaged contacts of a cracked beam lie scattered among condensed ones, so that fetch, not
 // arithmetic, is the point path's largest cost (bench/RESULTS.md has the measurements).
 #include <cstddef>
+#include <type_traits>
 #include <vector>
 
-#include "rcdem/contact/laws/local_point_state.hpp"
-#include "rcdem/state/body_poses.hpp"  // AlignedAllocator
+#include "rcdem/contact/laws/law_registry.hpp"  // PointHistory
+#include "rcdem/state/body_poses.hpp"           // AlignedAllocator
 #include "rcdem/state/contact_network.hpp"
 
 namespace rcdem {
 
-// Line 1: what the step only reads, and the damage, stored only when it grows (the line then
-// stays clean in most visits and is not written back). Line 2: the history every visit writes.
-// Shear vectors are their components along the contact frame's axes (t1, t2).
-struct alignas(64) LocalPointRecord {
-  Real x0, y0, z0;                  // the point at t = 0 (ContactNetwork::point_position0)
-  LocalPointConstants constants;    // (3)-(6) (ContactNetwork::constants)
-  Real damage;                      // D (S4)
-  Real fn, fs1, fs2, un, us1, us2;  // forces and accumulated displacements (SPEC 4-5)
-  Real un_max, us_max_sq;           // the maxima that drive D (S3)
-
-  [[gnu::always_inline]] PlanePointState state() const {
-    PlanePointState s;
-    s.fn = fn;
-    s.fs = {fs1, fs2};
-    s.un = un;
-    s.us = {us1, us2};
-    s.un_max = un_max;
-    s.us_max_sq = us_max_sq;
-    s.damage = damage;
-    return s;
-  }
-  [[gnu::always_inline]] void store(const PlanePointState& s) {
-    fn = s.fn;
-    fs1 = s.fs.x;
-    fs2 = s.fs.y;
-    un = s.un;
-    us1 = s.us.x;
-    us2 = s.us.y;
-    un_max = s.un_max;
-    us_max_sq = s.us_max_sq;
-    if (s.damage != damage) damage = s.damage;  // D only grows: rarely a write
-  }
+// A point: what the step only reads (56 bytes), then the law's state, which it reads and writes.
+// The state's first field shares the first line (BasicPointState keeps D there, written only when
+// it grows, so that line stays clean in most visits and is not written back); the rest is the
+// second line. The loop over a set's points is a template on its law and copies the state in and
+// out (store_state), so a law's update sees only its own State.
+template <class History>
+struct alignas(64) BasicLocalPointRecord {
+  Real x0, y0, z0;                // the point at t = 0 (ContactNetwork::point_position0)
+  LocalPointConstants constants;  // (3)-(6) (ContactNetwork::constants)
+  History history;                // the law's state (law_registry.hpp, PointHistory)
 };
+using LocalPointRecord = BasicLocalPointRecord<PointHistory<PlaneVec>>;
 static_assert(sizeof(LocalPointRecord) == 128, "a record is two cache lines");
 
-// A point's history as checkpoint columns (core/archive.hpp), in this order; its position and
+// A point's history as checkpoint columns (core/archive.hpp): its state's; its position and
 // constants come with the regenerated specimen.
 template <class Record, class R>
 requires std::same_as<std::remove_const_t<R>, LocalPointRecord>
 void archive_fields(Record& r, R& p) {
-  r.put(p.fn);
-  r.put(p.fs1);
-  r.put(p.fs2);
-  r.put(p.un);
-  r.put(p.us1);
-  r.put(p.us2);
-  r.put(p.un_max);
-  r.put(p.us_max_sq);
-  r.put(p.damage);
+  r.put(p.history);
 }
 
 // The damage of every point, read in place (outputs, counters).
@@ -70,7 +42,7 @@ struct PointDamage {
   const LocalPointRecord* records;
   std::size_t count;
   std::size_t size() const { return count; }
-  Real operator[](std::size_t m) const { return records[m].damage; }
+  Real operator[](std::size_t m) const { return records[m].history.damage; }
 };
 
 struct LocalPointRecords {
@@ -87,19 +59,10 @@ struct LocalPointRecords {
   // Point m with its shear vectors as frame components (t1, t2, 0) (ContactState::to_world turns
   // them into world vectors).
   LocalPointState operator[](Index m) const {
-    const PlanePointState p = records[static_cast<std::size_t>(m)].state();
-    LocalPointState s;
-    s.fn = p.fn;
-    s.fs = Vec3(p.fs.x, p.fs.y, 0.0);
-    s.un = p.un;
-    s.us = Vec3(p.us.x, p.us.y, 0.0);
-    s.un_max = p.un_max;
-    s.us_max_sq = p.us_max_sq;
-    s.damage = p.damage;
-    return s;
+    return in_frame_components(records[static_cast<std::size_t>(m)].history);
   }
 
-  // The nine history values of point m, in the checkpoint's order (archive_fields below), each
+  // The history values of point m, in the checkpoint's order (archive_fields above), each
   // passed to f by reference.
   template <typename F>
   void for_each_history(Index m, F&& f) {
@@ -118,7 +81,10 @@ struct LocalPointRecords {
     F& f;
     template <typename T>
     void put(T& v) {
-      f(v);
+      if constexpr (std::is_arithmetic_v<std::remove_const_t<T>>)
+        f(v);
+      else
+        archive_fields(*this, v);  // a struct of values: its own fields, in order
     }
   };
 };

@@ -575,14 +575,14 @@ Energy Simulation::energy() const {
 Index Simulation::damaged_points() const {
   Index n = 0;
   for (const LocalPointRecord& r : concrete_.contacts.point.records)
-    n += (r.damage > 0.0 && r.damage < 1.0);
+    n += (r.history.damage > 0.0 && r.history.damage < 1.0);
   return n;
 }
 
 Index Simulation::broken_interface_points() const {
   Index n = 0;
   for (const auto& st : bars_.interface_states)
-    for (const LocalPointRecord& r : st.point.records) n += (r.damage >= 1.0);
+    for (const LocalPointRecord& r : st.point.records) n += (r.history.damage >= 1.0);
   return n;
 }
 
@@ -600,7 +600,7 @@ Real Simulation::max_axial_force() const {
 
 Index Simulation::broken_points() const {
   Index n = 0;
-  for (const LocalPointRecord& r : concrete_.contacts.point.records) n += (r.damage >= 1.0);
+  for (const LocalPointRecord& r : concrete_.contacts.point.records) n += (r.history.damage >= 1.0);
   return n;
 }
 

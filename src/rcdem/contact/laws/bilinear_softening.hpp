@@ -25,6 +25,10 @@ inline Real softening_damage(Real u_max, Real u_0, Real u_ult) {
 }
 
 struct BilinearSoftening {
+  // What a point keeps between updates (V: Vec3, or PlaneVec in the contact loop).
+  template <typename V>
+  using State = BasicPointState<V>;
+
   Real sigma_nt = 0;  // contact tensile strength sigma_n,t [Pa], (5)
   Real tau = 0;       // contact cohesion tau [Pa], (6)
   Real G_fn = 0;      // tensile fracture energy [J/m^2]
@@ -41,7 +45,7 @@ struct BilinearSoftening {
 
   // The elastic energy held at the point (SPEC 11): fn^2/2kn + |fs|^2/2ks (unloading keeps kn).
   template <typename V>
-  Real elastic_energy(const LocalPointConstants& c, const BasicPointState<V>& s) const {
+  Real elastic_energy(const LocalPointConstants& c, const State<V>& s) const {
     return spring_energy(c, s);
   }
 
@@ -50,7 +54,7 @@ struct BilinearSoftening {
   // caller has already rotated s.fs and s.us into that plane. Requires c.kn > 0 and c.ks > 0.
   // V: Vec3, or PlaneVec (frame components) in the contact loop.
   template <typename V>
-  [[gnu::always_inline]] LawResult update(const LocalPointConstants& c, BasicPointState<V>& s,
+  [[gnu::always_inline]] LawResult update(const LocalPointConstants& c, State<V>& s,
                                           Real u_n, const V& u_s) const {
     const Real fn_old = s.fn;
     const V fs_old = s.fs;

@@ -10,18 +10,22 @@
 namespace rcdem {
 
 struct Elastic {
+  // What a point keeps between updates (V: Vec3, or PlaneVec in the contact loop).
+  template <typename V>
+  using State = BasicPointState<V>;
+
   // Its contacts always go through their points: with no limit, a contact would never leave
   // the condensed kernel, whose catch-up assumes BL's intact branch.
   static constexpr bool kCondensable = false;
 
   template <typename V>
-  Real elastic_energy(const LocalPointConstants& c, const BasicPointState<V>& s) const {
+  Real elastic_energy(const LocalPointConstants& c, const State<V>& s) const {
     return spring_energy(c, s);
   }
 
   // Same contract as BilinearSoftening::update; never dissipates.
   template <typename V>
-  [[gnu::always_inline]] LawResult update(const LocalPointConstants& c, BasicPointState<V>& s,
+  [[gnu::always_inline]] LawResult update(const LocalPointConstants& c, State<V>& s,
                                           Real u_n, const V& u_s) const {
     const Real dun = u_n - s.un;
     const V dus = u_s - s.us;

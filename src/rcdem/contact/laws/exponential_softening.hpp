@@ -26,6 +26,10 @@
 namespace rcdem {
 
 struct ExponentialSoftening {
+  // What a point keeps between updates (V: Vec3, or PlaneVec in the contact loop).
+  template <typename V>
+  using State = BasicPointState<V>;
+
   Real sigma_nt = 0;  // contact tensile strength sigma_n,t [Pa], (5)
   Real G_fn = 0;      // tensile fracture energy [J/m^2]
   Real mu_c = 0;      // friction coefficient, (S5)
@@ -59,13 +63,13 @@ struct ExponentialSoftening {
 
   // The elastic energy held at the point (SPEC 11): fn u_n / 2 on the secant, |fs|^2 / 2ks.
   template <typename V>
-  Real elastic_energy(const LocalPointConstants& c, const BasicPointState<V>& s) const {
+  Real elastic_energy(const LocalPointConstants& c, const State<V>& s) const {
     return 0.5 * s.fn * s.un + shear_energy(c, s.fs);
   }
 
   // Same contract as BilinearSoftening::update.
   template <typename V>
-  [[gnu::always_inline]] LawResult update(const LocalPointConstants& c, BasicPointState<V>& s,
+  [[gnu::always_inline]] LawResult update(const LocalPointConstants& c, State<V>& s,
                                           Real u_n, const V& u_s) const {
     const V fs_old = s.fs;
     const V fs_trial = V(fs_old - c.ks * (u_s - s.us));  // (2), tension-positive form

@@ -19,6 +19,21 @@ namespace rcdem {
 
 using ContactLaw = std::variant<BilinearSoftening, Elastic, ExponentialSoftening>;
 
+// The point state every law of the table keeps: a set of points holds one array of records
+// (contact/local_point_records.hpp) whatever its law, so the laws share it. A law whose State
+// differs stops the build here; it would need ContactState to hold one record array per state,
+// chosen with the law (docs/architecture.md, known weak points).
+template <class Variant, typename V>
+struct CommonPointState;
+template <class First, class... Rest, typename V>
+struct CommonPointState<std::variant<First, Rest...>, V> {
+  using type = typename First::template State<V>;
+  static_assert((std::is_same_v<type, typename Rest::template State<V>> && ...),
+                "every law in ContactLaw keeps the same point State");
+};
+template <typename V>
+using PointHistory = typename CommonPointState<ContactLaw, V>::type;
+
 struct ContactLawRow {
   std::string_view name;  // the value of contact.law or bars.*.interface_softening
   // Softens (has strengths and fracture energies): may be a nonlinear interface's law.
