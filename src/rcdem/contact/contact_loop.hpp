@@ -33,8 +33,6 @@ struct PointSums {
 // (bench/RESULTS.md): every lane then pays both divisions and both roots.
 template <typename Law>
 struct PointUpdate {
-  static_assert(std::is_same_v<typename Law::template State<PlaneVec>,
-                               decltype(LocalPointRecord::history)>);
   const Law& law;
   LocalPointRecord* records;
   Vec3 xa0;              // A's centre at t = 0
