@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "rcdem/contact/contact_loop.hpp"
+#include "rcdem/contact/law_loops.hpp"
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/parallel.hpp"
 #include "rcdem/reinforcement/rigid_rotation.hpp"
@@ -352,9 +352,7 @@ void Simulation::run_small_task(const SmallTask& task) {
           body_inputs(ic.net, bodies_, concrete_.rotation.data(), ic.anchor0.data(), time_step_.dt);
       ContactState& st = bars_.interface_states[task.bar];
       std::visit(
-          [&](const auto& law) {
-            for (Index c = task.begin; c < task.end; ++c) evaluate_contact(law, in, st, nullptr, c);
-          },
+          [&](const auto& law) { evaluate_contact_range(law, in, st, task.begin, task.end); },
           bars_.interface_law[task.bar]);
       break;
     }
