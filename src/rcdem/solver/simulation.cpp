@@ -227,13 +227,8 @@ void Simulation::catch_up_condensed_points() const {
   // The last evaluation's kinematics: its centres and orientation matrices, both kept until the
   // next step forms them anew.
   if (!concrete_.condensation.any_condensed) return;
-  std::visit(
-      [&](const auto& law) {
-        if constexpr (kCondensableLaw<std::decay_t<decltype(law)>>)
-          catch_up_condensed(law, concrete_inputs(concrete_.position_eval, concrete_.rotation),
-                             concrete_.contacts, concrete_.condensation);
-      },
-      concrete_.law);
+  catch_up_condensed(concrete_.law, concrete_inputs(concrete_.position_eval, concrete_.rotation),
+                     concrete_.contacts, concrete_.condensation);
 }
 
 const PulledBar* Simulation::find_pulled_bar(const std::string& name) const {
@@ -260,14 +255,7 @@ void Simulation::step() {
   const ContactInputs previous = concrete_inputs(concrete_.position_prev, concrete_.rotation_prev);
   ElasticCondensation* condensed =
       concrete_.condensation.sums.empty() ? nullptr : &concrete_.condensation;
-  std::visit(
-      [&](const auto& law) {
-        if constexpr (kCondensableLaw<std::decay_t<decltype(law)>>)
-          evaluate_contacts(law, concrete, concrete_.contacts, condensed, &previous);
-        else
-          evaluate_contacts(law, concrete, concrete_.contacts);
-      },
-      concrete_.law);
+  evaluate_contacts(concrete_.law, concrete, concrete_.contacts, condensed, &previous);
   // Steel-concrete interfaces (each bar with its law), interaction nodes, 2. plates.
   parallel_tasks(static_cast<Index>(small_tasks_.size()),
                  [&](Index j) { run_small_task(small_tasks_[static_cast<std::size_t>(j)]); });
@@ -351,9 +339,7 @@ void Simulation::run_small_task(const SmallTask& task) {
       const ContactInputs in =
           body_inputs(ic.net, bodies_, concrete_.rotation.data(), ic.anchor0.data(), time_step_.dt);
       ContactState& st = bars_.interface_states[task.bar];
-      std::visit(
-          [&](const auto& law) { evaluate_contact_range(law, in, st, task.begin, task.end); },
-          bars_.interface_law[task.bar]);
+      evaluate_contact_range(bars_.interface_law[task.bar], in, st, task.begin, task.end);
       break;
     }
     case SmallTask::kPlates:

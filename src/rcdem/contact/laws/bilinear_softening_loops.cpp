@@ -1,6 +1,0 @@
-// BilinearSoftening's loops over contacts, compiled here alone (contact/law_loops.hpp says why).
-#include "rcdem/contact/law_loops.hpp"
-
-namespace rcdem {
-RCDEM_LAW_LOOPS(, BilinearSoftening);
-}  // namespace rcdem
