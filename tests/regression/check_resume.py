@@ -10,6 +10,8 @@ on tests/regression/small_run.toml (4,000 steps here):
     "--resume", a checkpoint of the step it stopped at, the last two kept, the file reads as
     docs/checkpoint.md describes it (header, sections, CRC-32 checked here with zlib); resumed
     (at 2 threads) it ends as the uninterrupted run;
+  * SIGTERM twice within 3 ms (as GNU timeout may deliver it): one request, exit 143 and a
+    checkpoint, in each of 3 runs;
   * the newest checkpoint corrupted: rejected with a message naming it and the reason, the
     previous one used, the same result; both corrupted: a clear error;
   * a full disk (RLIMIT_FSIZE: writes fail with EFBIG) during a resumed run: a clear error that
@@ -246,6 +248,27 @@ try:
     check(r.returncode == 0, "the interrupted run resumes at 2 threads"
           + ("" if r.returncode == 0 else f" ({r.stderr.strip()[-300:]})"))
     same_as(ref, intr, "SIGINT + --resume (2 threads) vs uninterrupted (1 thread)")
+
+    # --- SIGTERM twice, milliseconds apart (GNU timeout signals the run, then its process group):
+    # one request, a checkpoint and exit 143 every time; a binary that takes the second copy for
+    # the user insisting died without a checkpoint in 4 of 6 such runs. -------------------------
+    twice = os.path.join(tmp, "term_twice")
+    results = []
+    for _ in range(3):
+        shutil.rmtree(twice, ignore_errors=True)
+        p = start(["run", scenario, "-o", twice, "--checkpoint-every", "300"])
+        wait_for(lambda: len(checkpoints(twice)) >= 1, p)
+        p.send_signal(signal.SIGTERM)
+        time.sleep(0.003)
+        if p.poll() is None:
+            p.send_signal(signal.SIGTERM)
+        _, err = p.communicate()
+        at_step = re.search(r"interrupted by SIGTERM at step (\d+)", err)
+        ck = checkpoints(twice)
+        results.append((p.returncode, bool(at_step and ck and ck[-1][0] == int(at_step.group(1)))))
+    check(all(r == (143, True) for r in results),
+          f"SIGTERM twice within 3 ms: exit 143 with a checkpoint of the step it stopped at, "
+          f"3 runs of 3 ({results})")
 
     # --- A corrupted newest checkpoint: the previous one is used. -----------------------------
     corrupt = os.path.join(tmp, "corrupt")

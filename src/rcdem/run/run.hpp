@@ -39,7 +39,8 @@ struct RunOptions {
   // --resume without --checkpoint-every keeps it (empty: not recorded).
   std::string checkpoint_every_text;
   // SIGINT/SIGTERM during the loop: finish the step, write a checkpoint, history.csv and
-  // broken_points.csv, and return with stop_reason "interrupted". A second signal kills at once.
+  // broken_points.csv, and return with stop_reason "interrupted". A second signal a second or
+  // more after the first kills at once (run_signals.cpp).
   bool handle_signals = false;
   // Once the run has finished and written its results, its checkpoints are removed.
   bool keep_checkpoints = false;

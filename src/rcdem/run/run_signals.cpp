@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cstring>
+#include <ctime>
 #include <string>
 
 namespace rcdem {
@@ -27,13 +28,26 @@ extern "C" void on_setup_signal(int sig) {
   ::_exit(128 + sig);
 }
 
+// Signals in quick succession are one request: GNU timeout, for one, sends SIGTERM to the run and
+// then to its whole process group, and the second copy may arrive after the first was handled.
+// Only a signal this long after the first means the user insists.
+constexpr long long kInsistAfterNs = 1'000'000'000;
+// Written and read only by the handlers, which block each other (install's sa_mask).
+timespec g_first_signal = {};
+
 extern "C" void on_stop_signal(int sig) {
+  timespec now = {};
+  ::clock_gettime(CLOCK_MONOTONIC, &now);  // async-signal-safe (POSIX)
   if (g_signal != 0) {
-    // A second signal: the user insists. Die as the signal says (async-signal-safe calls only).
+    const long long since = (now.tv_sec - g_first_signal.tv_sec) * 1'000'000'000LL +
+                            (now.tv_nsec - g_first_signal.tv_nsec);
+    if (since < kInsistAfterNs) return;
+    // The user insists. Die as the signal says (async-signal-safe calls only).
     std::signal(sig, SIG_DFL);
     std::raise(sig);
     return;
   }
+  g_first_signal = now;
   g_signal = sig;
 }
 
@@ -71,6 +85,8 @@ void SignalGuard::install(void (*handler)(int), struct sigaction* old_int,
   struct sigaction sa = {};
   sa.sa_handler = handler;
   sigemptyset(&sa.sa_mask);
+  sigaddset(&sa.sa_mask, SIGINT);  // the handlers never interrupt each other
+  sigaddset(&sa.sa_mask, SIGTERM);
   sa.sa_flags = SA_RESTART;  // writes in progress go on; the flag is read after the step
   ::sigaction(SIGINT, &sa, old_int);
   ::sigaction(SIGTERM, &sa, old_term);
