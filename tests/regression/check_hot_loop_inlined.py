@@ -1,9 +1,9 @@
 #!/usr/bin/python3
 """The contact loops hold no call to Eigen: every small vector operation of the point loop is
-inlined (contact/law_loops.hpp says why that needed each law's loops in a unit of their own).
+inlined (CMakeLists.txt says why contact/law_loops.cpp gets a larger inlining budget for that).
 
-An out-of-line Eigen call in the loop spills every live vector register, and three such calls
-cost the cracked AN4 beam 4% of its step (bench/RESULTS.md, "Architecture (issue 29)"). This
+An out-of-line Eigen call in the loop spills every live vector register; such calls were the
+cracked AN4 beam's lost step rate (bench/RESULTS.md, "Architecture (issue 29)"). This
 reads the optimised binary's code, not its speed: deterministic for one compiler, so it runs
 only on what CI builds (GCC, Release) and is skipped (77) otherwise.
 

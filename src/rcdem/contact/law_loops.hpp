@@ -11,7 +11,8 @@ namespace rcdem {
 // evaluate_contacts (contact_loop.hpp) with the law `law` holds; `cond` and `previous` are used
 // only by a condensable law (kCondensableLaw), the others go through their points.
 void evaluate_contacts(const ContactLaw& law, const ContactInputs& in, ContactState& cs,
-                       ElasticCondensation* cond, const ContactInputs* previous);
+                       ElasticCondensation* cond = nullptr,
+                       const ContactInputs* previous = nullptr);
 
 // catch_up_condensed (contact_loop.hpp) with the law `law` holds; nothing for a law that is not
 // condensable (its contacts are never condensed).
