@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -20,6 +21,7 @@
 #include "rcdem/config/scenario_seed.hpp"
 #include "rcdem/config/schema.hpp"
 #include "rcdem/core/build_info.hpp"
+#include "rcdem/core/child_process.hpp"
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
 #include "rcdem/io/atomic_file.hpp"
@@ -42,7 +44,7 @@ int generate(const fs::path& scenario_path, fs::path out, bool force) {
   const auto start = std::chrono::steady_clock::now();
   const rcdem::Scenario scenario = rcdem::load_scenario(scenario_path);
   if (out.empty()) out = default_output(scenario_path);
-  rcdem::io::OutputDirectory dir(out, force);
+  rcdem::io::OutputDirectory dir(out, force, {scenario_path});
   try {
     write_specimen(scenario, out, start);
   } catch (const rcdem::Error& e) {
@@ -118,6 +120,19 @@ std::string recorded_checkpoint_every(const fs::path& dir) {
   return m["checkpoint_every"].get<std::string>();
 }
 
+// A --force killed during its set-up left the earlier run aside (DIR/.rcdem-replaced): it is what
+// --resume continues, so it is put back first.
+void restore_interrupted_force(const fs::path& dir) {
+  std::error_code ec;
+  if (!fs::exists(dir / rcdem::io::OutputDirectory::kReplacedName, ec)) return;
+  const rcdem::io::RunLock lock(dir, true);
+  if (rcdem::io::restore_replaced_results(dir) && !rcdem::Progress::quiet_default())
+    fmt::print(stderr,
+               "rcdem: '{}': a --force was interrupted during its set-up; the earlier run it "
+               "was replacing is restored\n",
+               dir.string());
+}
+
 int run(const fs::path& scenario_path, fs::path out, bool force, const fs::path& resume,
         std::string checkpoint_every, bool checkpoint_every_given,
         std::optional<std::uint64_t> seed, const std::vector<std::string>& command) {
@@ -140,6 +155,7 @@ int run(const fs::path& scenario_path, fs::path out, bool force, const fs::path&
           "run --resume '{}': the run continues in its own directory with its own scenario; drop "
           "-o/--force/--seed",
           resume.string());
+    restore_interrupted_force(resume);
     const rcdem::Scenario scenario = rcdem::run_directory_scenario(resume);
     rcdem::validate_run(scenario);
     if (::access(resume.c_str(), W_OK | X_OK) != 0)
@@ -151,7 +167,7 @@ int run(const fs::path& scenario_path, fs::path out, bool force, const fs::path&
     const rcdem::Scenario scenario = rcdem::config::load_scenario_on_seed(scenario_path, seed);
     rcdem::validate_run(scenario);
     if (out.empty()) out = default_output(scenario_path);
-    rcdem::io::OutputDirectory dir(out, force);
+    rcdem::io::OutputDirectory dir(out, force, {scenario_path});
     options.lock_held = true;
     options.on_started = [&dir] { dir.commit(); };
     r = rcdem::run_scenario(scenario, out, options);
@@ -217,7 +233,7 @@ int calibrate(const fs::path& scenario_path, fs::path out, bool force, double si
     rcdem::fail("--size {} m: a cube needs at least four of the largest diameters ({} m) per side",
                 size, 4.0 * largest);
   if (out.empty()) out = fs::path("results") / ("calibrate_" + scenario_path.stem().string());
-  rcdem::io::OutputDirectory dir(out, force);
+  rcdem::io::OutputDirectory dir(out, force, {scenario_path});
   dir.commit();  // a calibration's partial outputs (its iterations) are kept if it fails
   const auto r = rcdem::calibrate(base, opt, out);
   fmt::print(
@@ -261,9 +277,25 @@ int study(const std::string& name, fs::path scenarios, fs::path out, bool force,
   return failed == 0 ? 0 : failed < 0 ? 130 : 5;
 }
 
+// The first word that is not an option, when it names no subcommand (CLI11 would only say that
+// one is required).
+const char* unknown_subcommand(const CLI::App& app, int argc, char** argv) {
+  for (int k = 1; k < argc; ++k) {
+    if (argv[k][0] == '-') continue;
+    for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
+      if (sub->check_name(argv[k])) return nullptr;
+    return argv[k];
+  }
+  return nullptr;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  // A file-size limit (ulimit -f) then fails a write with EFBIG, which rcdem reports like any
+  // write failure, instead of killing the run without a word or a checkpoint.
+  std::signal(SIGXFSZ, SIG_IGN);
+  rcdem::stop_with_parent_process();
   CLI::App app{"rcdem: 3D rigid-particle model for reinforced-concrete fracture"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string(rcdem::build_version()) + " (" +
@@ -271,6 +303,7 @@ int main(int argc, char** argv) {
                                         ")");
   bool quiet = false;
   app.add_flag("-q,--quiet", quiet, "No progress or summary lines");
+  app.fallthrough();  // -q after the subcommand too
 
   fs::path scenario, out;
   bool force = false;
@@ -359,10 +392,24 @@ int main(int argc, char** argv) {
 
   auto* schema = app.add_subcommand("print-schema", "Print a documented scenario template");
 
+  if (const char* unknown = unknown_subcommand(app, argc, argv)) {
+    std::cerr << "rcdem: error: unknown command '" << unknown
+              << "' (the commands are: generate, run, calibrate, study, print-schema; rcdem "
+                 "--help says more)\n";
+    return 2;
+  }
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
+  } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);
+    std::cerr << "rcdem: error: " << e.what() << " (rcdem --help lists the commands and options)\n";
+    return 2;
   }
   rcdem::Progress::set_quiet_default(quiet);
   try {

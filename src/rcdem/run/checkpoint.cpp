@@ -182,31 +182,56 @@ std::string encode_checkpoint(const CheckpointParts& parts, std::uint64_t scenar
 
 namespace {
 
-std::string read_whole(const fs::path& file) {
-  const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) throw Reject{fmt::format("cannot open it: {}", std::strerror(errno))};
-  struct stat st {};
-  if (::fstat(fd, &st) != 0) {
-    const int err = errno;
-    ::close(fd);
-    throw Reject{fmt::format("cannot read it: {}", std::strerror(err))};
-  }
-  std::string data(static_cast<std::size_t>(st.st_size), '\0');
+// Reads from `fd` until `size` bytes or the end; the count read.
+std::size_t read_fully(int fd, char* data, std::size_t size) {
   std::size_t done = 0;
-  while (done < data.size()) {
-    const ssize_t n = ::read(fd, data.data() + done, data.size() - done);
+  while (done < size) {
+    const ssize_t n = ::read(fd, data + done, size - done);
     if (n < 0 && errno == EINTR) continue;
-    if (n < 0) {
-      const int err = errno;
-      ::close(fd);
-      throw Reject{fmt::format("cannot read it: {}", std::strerror(err))};
-    }
+    if (n < 0) throw Reject{fmt::format("cannot read it: {}", std::strerror(errno))};
     if (n == 0) break;
     done += static_cast<std::size_t>(n);
   }
-  ::close(fd);
-  data.resize(done);
+  return done;
+}
+
+// The file's bytes, once it is known to be a regular file (a FIFO so named would block the
+// resume) that starts like a checkpoint and fits in memory (a huge sparse file so named would
+// exhaust it): anything else is rejected, and the previous checkpoint taken.
+std::string read_checked(int fd) {
+  struct stat st {};
+  if (::fstat(fd, &st) != 0) throw Reject{fmt::format("cannot read it: {}", std::strerror(errno))};
+  if (!S_ISREG(st.st_mode)) throw Reject{"not a regular file"};
+  char head[24];
+  const std::size_t got = read_fully(fd, head, sizeof head);
+  if (got < sizeof head || std::memcmp(head, kCheckpointMagic, 8) != 0)
+    return std::string(head, got);  // not a checkpoint: these bytes are enough for parse() to say so
+  const double memory = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) *
+                        static_cast<double>(::sysconf(_SC_PAGESIZE));
+  if (memory > 0.0 && static_cast<double>(st.st_size) > 0.5 * memory)
+    throw Reject{fmt::format("{} bytes, more than half of this machine's memory", st.st_size)};
+  std::string data;
+  try {
+    data.assign(std::max(static_cast<std::size_t>(st.st_size), got), '\0');
+  } catch (const std::bad_alloc&) {
+    throw Reject{fmt::format("{} bytes, more than can be allocated", st.st_size)};
+  }
+  std::memcpy(data.data(), head, got);
+  data.resize(got + read_fully(fd, data.data() + got, data.size() - got));
   return data;
+}
+
+std::string read_whole(const fs::path& file) {
+  const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+  if (fd < 0) throw Reject{fmt::format("cannot open it: {}", std::strerror(errno))};
+  try {
+    std::string data = read_checked(fd);
+    ::close(fd);
+    return data;
+  } catch (...) {
+    ::close(fd);
+    throw;
+  }
 }
 
 Parsed parse(const fs::path& file) {

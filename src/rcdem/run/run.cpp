@@ -532,10 +532,10 @@ RunSummary RunLoop::finish() {
   const double loop_s = loop_before_ + std::chrono::duration<double>(end - loop_start_).count();
   r.json = summary_json(r, wall, loop_s);
   io::write_file_atomically(out_ / "summary.json", r.json.dump(2) + "\n");
-  io::run_plot_tool("plot_history.py", out_);  // load_displacement.png
   r.history_columns = history_.columns();
   r.history_rows = history_.data();
   finish_manifest(r, wall, end);
+  io::run_plot_tool("plot_history.py", out_);  // load_displacement.png, once the run is complete
   if (!Progress::quiet_default()) {
     const Energy& e = r.energy;
     fmt::print(stderr,

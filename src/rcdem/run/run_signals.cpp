@@ -56,7 +56,10 @@ extern "C" void on_stop_signal(int sig) {
 int pending_stop_signal() { return g_signal; }
 
 const char* signal_name(int sig) {
-  return sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "a signal";
+  return sig == SIGINT    ? "SIGINT"
+         : sig == SIGTERM ? "SIGTERM"
+         : sig == SIGHUP  ? "SIGHUP"
+                          : "a signal";
 }
 
 SignalGuard::SignalGuard(bool on, const std::filesystem::path& lock, bool resuming) : on_(on) {
@@ -65,31 +68,35 @@ SignalGuard::SignalGuard(bool on, const std::filesystem::path& lock, bool resumi
   g_resuming = resuming ? 1 : 0;
   const std::string l = lock.string();
   if (l.size() < sizeof g_lock_path) std::memcpy(g_lock_path, l.c_str(), l.size() + 1);
-  install(on_setup_signal, &old_int_, &old_term_);
+  install(on_setup_signal, &old_int_, &old_term_, &old_hup_);
 }
 
 void SignalGuard::loop() {
-  if (on_) install(on_stop_signal, nullptr, nullptr);
+  if (on_) install(on_stop_signal, nullptr, nullptr, nullptr);
 }
 
 SignalGuard::~SignalGuard() {
   if (!on_) return;
   ::sigaction(SIGINT, &old_int_, nullptr);
   ::sigaction(SIGTERM, &old_term_, nullptr);
+  ::sigaction(SIGHUP, &old_hup_, nullptr);
   g_signal = 0;
   g_lock_path[0] = 0;
 }
 
+// SIGHUP (the terminal closed) is handled like SIGINT: the run checkpoints and stops.
 void SignalGuard::install(void (*handler)(int), struct sigaction* old_int,
-                          struct sigaction* old_term) {
+                          struct sigaction* old_term, struct sigaction* old_hup) {
   struct sigaction sa = {};
   sa.sa_handler = handler;
   sigemptyset(&sa.sa_mask);
   sigaddset(&sa.sa_mask, SIGINT);  // the handlers never interrupt each other
   sigaddset(&sa.sa_mask, SIGTERM);
+  sigaddset(&sa.sa_mask, SIGHUP);
   sa.sa_flags = SA_RESTART;  // writes in progress go on; the flag is read after the step
   ::sigaction(SIGINT, &sa, old_int);
   ::sigaction(SIGTERM, &sa, old_term);
+  ::sigaction(SIGHUP, &sa, old_hup);
 }
 
 }  // namespace rcdem

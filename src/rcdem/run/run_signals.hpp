@@ -1,5 +1,5 @@
 #pragma once
-// SIGINT/SIGTERM during a run (docs/checkpoint.md). During the set-up (generation: seconds to
+// SIGINT/SIGTERM/SIGHUP during a run (docs/checkpoint.md). During the set-up (generation: seconds to
 // minutes) there is nothing to save: the process ends at once, saying so. From the first step on
 // the handler only raises a flag, which the loop reads after every step to checkpoint and stop.
 #include <csignal>
@@ -24,10 +24,12 @@ class SignalGuard {
   SignalGuard& operator=(const SignalGuard&) = delete;
 
  private:
-  static void install(void (*handler)(int), struct sigaction* old_int, struct sigaction* old_term);
+  static void install(void (*handler)(int), struct sigaction* old_int, struct sigaction* old_term,
+                      struct sigaction* old_hup);
   bool on_;
   struct sigaction old_int_ = {};
   struct sigaction old_term_ = {};
+  struct sigaction old_hup_ = {};
 };
 
 }  // namespace rcdem

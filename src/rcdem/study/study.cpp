@@ -1,8 +1,6 @@
 #include "rcdem/study/study.hpp"
 
-#include <fcntl.h>
 #include <fmt/format.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -18,6 +16,7 @@
 
 #include "rcdem/config/scenario.hpp"
 #include "rcdem/config/scenario_seed.hpp"
+#include "rcdem/core/child_process.hpp"
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
 #include "rcdem/io/atomic_file.hpp"
@@ -25,6 +24,7 @@
 #include "rcdem/run/checkpoint.hpp"
 #include "rcdem/run/run.hpp"
 #include "rcdem/run/run_manifest.hpp"
+#include "rcdem/study/case_check.hpp"
 
 namespace rcdem {
 
@@ -61,18 +61,6 @@ std::string interface_name(const Scenario& s) {
       return "NL-B";
   }
   return "none";
-}
-
-nlohmann::json read_json(const fs::path& file) {
-  std::ifstream in(file);
-  nlohmann::json j;
-  try {
-    in >> j;
-  } catch (const std::exception& e) {
-    fail("{}: not a readable summary ({}); delete the case's directory to rerun it", file.string(),
-         e.what());
-  }
-  return j;
 }
 
 struct CaseRecord {
@@ -121,38 +109,27 @@ void write_tables(const fs::path& out, const std::vector<CaseRecord>& cases,
 }
 
 // `rcdem run SCENARIO -o DIR --force [--seed N]` (or `rcdem run --resume DIR`) as a child
-// process, output to DIR/run.log (appended to on a resume).
+// process, output to DIR/run.log (appended to on a resume). The child stops (checkpointing) when
+// the study dies, even by SIGKILL.
 pid_t spawn_run(const fs::path& scenario, const fs::path& dir, int threads, bool resume,
                 std::optional<std::uint64_t> seed) {
-  // Through /proc/self/exe, not its target: the binary may be rebuilt while a study runs, and
-  // the link still reaches the one that is running.
-  const std::string exe = "/proc/self/exe";
-  const std::string log = (dir / "run.log").string();
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
-                                   O_WRONLY | O_CREAT | (resume ? O_APPEND : O_TRUNC), 0644);
-  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
   std::vector<std::string> args =
       resume ? std::vector<std::string>{"rcdem", "run", "--resume", dir.string()}
              : std::vector<std::string>{"rcdem", "run",        scenario.string(),
                                         "-o",    dir.string(), "--force"};
   if (!resume && seed) args.insert(args.end(), {"--seed", std::to_string(*seed)});
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  std::vector<std::string> env_store;
-  for (char** e = environ; *e; ++e)
-    if (std::strncmp(*e, "OMP_NUM_THREADS=", 16) != 0) env_store.emplace_back(*e);
-  env_store.push_back(fmt::format("OMP_NUM_THREADS={}", threads));
-  std::vector<char*> envp;
-  for (auto& e : env_store) envp.push_back(e.data());
-  envp.push_back(nullptr);
-  pid_t pid = 0;
-  const int err = posix_spawn(&pid, exe.c_str(), &actions, nullptr, argv.data(), envp.data());
-  posix_spawn_file_actions_destroy(&actions);
-  if (err != 0) fail("cannot start a run for {}: {}", scenario.string(), std::strerror(err));
-  return pid;
+  SpawnOptions o;
+  o.log = dir / "run.log";
+  o.append_log = resume;
+  o.env_set = {fmt::format("OMP_NUM_THREADS={}", threads)};
+  o.stop_with_parent = true;
+  // Through /proc/self/exe, not its target: the binary may be rebuilt while a study runs, and
+  // the link still reaches the one that is running.
+  try {
+    return spawn_child("/proc/self/exe", args, o);
+  } catch (const Error& e) {
+    fail("cannot start a run for {}: {}", scenario.string(), e.what());
+  }
 }
 
 std::string last_line(const fs::path& file) {
@@ -250,11 +227,14 @@ class StudyRun {
   bool quiet_;
   std::vector<CaseRecord> records_;
   std::vector<std::size_t> pending_;
+  std::set<std::size_t> rerun_;  // finished cases whose scenario changed: started afresh
   std::size_t done_ = 0;
   int failed_ = 0;
 };
 
-// A case with a summary.json is finished (unless --force); any other is pending.
+// A case with a summary.json is finished (unless --force), once checked: a case whose scenario
+// changed since it ran is run again; one whose outputs are damaged stops the study, naming the
+// file (its results are the user's to keep or delete). Any other case is pending.
 CaseRecord StudyRun::initial_record(std::size_t i) {
   const StudyCase& sc = todo_[i];
   CaseRecord rec;
@@ -264,16 +244,26 @@ CaseRecord StudyRun::initial_record(std::size_t i) {
   rec.seed = sc.scenario.generation.seed;
   rec.dir = sc.seed ? fmt::format("{}_seed{}", rec.name, *sc.seed) : rec.name;
   rec.status = "not run";
-  const fs::path summary = o_.out / "cases" / rec.dir / "summary.json";
-  if (fs::exists(summary) && !o_.force) {
-    rec.summary = read_json(summary);
-    rec.status = "finished";
-    if (!quiet_)
-      fmt::print(stderr, "{}: finished earlier (peak {:.4g} kN), not rerun\n", rec.label(),
-                 rec.summary.value("peak_load_N", 0.0) / 1e3);
-  } else {
+  const fs::path dir = o_.out / "cases" / rec.dir;
+  if (!fs::exists(dir / "summary.json") || o_.force) {
     pending_.push_back(i);
+    return rec;
   }
+  const FinishedCase found = check_finished_case(dir, sc.scenario);
+  if (found.state == FinishedCase::State::damaged)
+    fail("{}: a finished case that cannot be trusted: {}; delete {} to run it again", rec.label(),
+         found.why, dir.string());
+  if (found.state == FinishedCase::State::scenario_changed) {
+    rerun_.insert(i);
+    pending_.push_back(i);
+    if (!quiet_) fmt::print(stderr, "{}: {}; run again\n", rec.label(), found.why);
+    return rec;
+  }
+  rec.summary = found.summary;
+  rec.status = "finished";
+  if (!quiet_)
+    fmt::print(stderr, "{}: finished earlier (peak {:.4g} kN), not rerun\n", rec.label(),
+               rec.summary["peak_load_N"].get<double>() / 1e3);
   return rec;
 }
 
@@ -294,19 +284,26 @@ fs::path StudyRun::prepare(std::size_t i) {
 void StudyRun::finish(std::size_t i, const std::string& error) {
   CaseRecord& rec = records_[i];
   ++done_;
-  if (error.empty()) {
-    rec.summary = read_json(o_.out / "cases" / rec.dir / "summary.json");
+  std::string why = error;
+  if (why.empty()) {
+    try {
+      rec.summary = read_run_summary(o_.out / "cases" / rec.dir / "summary.json");
+    } catch (const Error& e) {
+      why = e.what();
+    }
+  }
+  if (why.empty()) {
     rec.status = "finished";
     if (!quiet_)
       fmt::print(stderr, "[{}/{}] {}: finished, peak {:.4g} kN, {:.0f} s\n", done_, pending_.size(),
-                 rec.label(), rec.summary.value("peak_load_N", 0.0) / 1e3,
-                 rec.summary.value("seconds", 0.0));
+                 rec.label(), rec.summary["peak_load_N"].get<double>() / 1e3,
+                 rec.summary["seconds"].get<double>());
   } else {
     // One case failing (an instability, say) should not cost the others.
     rec.status = "failed";
-    rec.error = error;
+    rec.error = why;
     ++failed_;
-    fmt::print(stderr, "[{}/{}] {}: failed: {}\n", done_, pending_.size(), rec.label(), error);
+    fmt::print(stderr, "[{}/{}] {}: failed: {}\n", done_, pending_.size(), rec.label(), why);
   }
   write_tables(o_.out, records_, o_);  // after every case, so a stopped study keeps its table
 }
@@ -316,7 +313,7 @@ void StudyRun::start_next(std::map<pid_t, std::size_t>& running, std::size_t& ne
   while (next < pending_.size() && static_cast<int>(running.size()) < o_.jobs) {
     const std::size_t i = pending_[next++];
     const fs::path existing = o_.out / "cases" / records_[i].dir;
-    const bool resume = !o_.force && fs::exists(existing / "scenario.toml") &&
+    const bool resume = !o_.force && !rerun_.count(i) && fs::exists(existing / "scenario.toml") &&
                         !io::list_checkpoints(existing).empty();
     try {
       const fs::path dir = resume ? existing : prepare(i);
@@ -337,9 +334,10 @@ bool StudyRun::run_pending() {
   sa.sa_handler = on_study_signal;  // no SA_RESTART: waitpid returns EINTR
   sigemptyset(&sa.sa_mask);
   struct sigaction old_int {
-  }, old_term{};
+  }, old_term{}, old_hup{};
   ::sigaction(SIGINT, &sa, &old_int);
   ::sigaction(SIGTERM, &sa, &old_term);
+  ::sigaction(SIGHUP, &sa, &old_hup);
   std::map<pid_t, std::size_t> running;
   std::size_t next = 0;
   while (next < pending_.size() || !running.empty()) {
@@ -348,7 +346,7 @@ bool StudyRun::run_pending() {
     int status = 0;
     const pid_t pid = ::waitpid(-1, &status, 0);
     if (pid < 0 && errno == EINTR) {
-      // SIGINT/SIGTERM: pass it on (a terminal's ^C reached them already); each run then
+      // SIGINT/SIGTERM/SIGHUP: pass it on (a terminal's ^C reached them already); each run then
       // checkpoints and exits, and no further case starts.
       const int sig = g_study_signal;
       for (const auto& [child, _] : running) ::kill(child, sig);
@@ -373,7 +371,23 @@ bool StudyRun::run_pending() {
   }
   ::sigaction(SIGINT, &old_int, nullptr);
   ::sigaction(SIGTERM, &old_term, nullptr);
+  ::sigaction(SIGHUP, &old_hup, nullptr);
   return g_study_signal == 0;
+}
+
+// The previous report's files (tools/study_report.py's outputs), before a new report is made.
+void remove_report(const fs::path& out) {
+  std::error_code ec;
+  fs::remove_all(out / "curves", ec);
+  std::vector<fs::path> old;
+  for (fs::directory_iterator it(out, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    const bool figure = name.rfind("figure", 0) == 0 && it->path().extension() == ".png";
+    if (figure || name == "crack_height.png" || name == "table3.md" || name == "report.json" ||
+        name == "report.log")
+      old.push_back(it->path());
+  }
+  for (const auto& p : old) fs::remove(p, ec);
 }
 
 }  // namespace
@@ -393,7 +407,10 @@ int run_study(const StudyOptions& o) {
                "again to resume (finished cases are kept)\n");
     return -1;
   }
-  if (!o.report_script.empty()) io::run_plot_tool(o.report_script, o.out);
+  if (!o.report_script.empty()) {
+    remove_report(o.out);  // a failed report must not leave the previous one looking current
+    io::run_report_tool(o.report_script, o.out);
+  }
   if (!Progress::quiet_default())
     fmt::print(stderr, "study {}: {} of {} cases finished; tables and figures in {}\n", o.label,
                cases - static_cast<std::size_t>(study.failed()), cases, o.out.string());
