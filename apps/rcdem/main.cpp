@@ -156,6 +156,14 @@ int run(const fs::path& scenario_path, fs::path out, bool force, const fs::path&
           "-o/--force/--seed",
           resume.string());
     restore_interrupted_force(resume);
+    if (rcdem::complete_finished_run(resume)) {
+      if (!rcdem::Progress::quiet_default())
+        fmt::print(stderr,
+                   "rcdem: '{}': the run had finished (summary.json) but was stopped before its "
+                   "manifest's last update; the manifest is completed, nothing to resume\n",
+                   resume.string());
+      return 0;
+    }
     const rcdem::Scenario scenario = rcdem::run_directory_scenario(resume);
     rcdem::validate_run(scenario);
     if (::access(resume.c_str(), W_OK | X_OK) != 0)

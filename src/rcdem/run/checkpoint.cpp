@@ -204,8 +204,8 @@ std::string read_checked(int fd) {
   if (!S_ISREG(st.st_mode)) throw Reject{"not a regular file"};
   char head[24];
   const std::size_t got = read_fully(fd, head, sizeof head);
-  if (got < sizeof head || std::memcmp(head, kCheckpointMagic, 8) != 0)
-    return std::string(head, got);  // not a checkpoint: these bytes are enough for parse() to say so
+  if (got == sizeof head && std::memcmp(head, kCheckpointMagic, 8) != 0)
+    throw Reject{"not an rcdem checkpoint (it does not start with 'RCDEMCKP')"};
   const double memory = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) *
                         static_cast<double>(::sysconf(_SC_PAGESIZE));
   if (memory > 0.0 && static_cast<double>(st.st_size) > 0.5 * memory)

@@ -125,6 +125,35 @@ void validate_run(const Scenario& s) {
         config::key_location(s, "stop.displacement"), control->name);
 }
 
+bool complete_finished_run(const fs::path& dir) {
+  std::error_code ec;
+  if (!fs::exists(dir / "summary.json", ec)) return false;
+  const io::RunLock lock(dir, true);
+  auto m = nlohmann::ordered_json::parse(read_text(dir / "manifest.json"), nullptr, false);
+  if (m.is_discarded() || !m.is_object() || m.value("exit_state", "") != "running") return false;
+  const auto s = nlohmann::json::parse(read_text(dir / "summary.json"), nullptr, false);
+  if (s.is_discarded() || !s.is_object() || !s.contains("steps") || !s["steps"].is_number())
+    fail("--resume '{}': summary.json is damaged and the manifest says the run never finished; "
+         "start the run again (-o {} --force)",
+         dir.string(), dir.string());
+  const std::string note =
+      "completed by --resume: the run wrote summary.json but stopped before its manifest's last "
+      "update";
+  m["exit_state"] = "finished";
+  m["steps"] = s["steps"];
+  if (s.contains("time_s")) m["time_s"] = s["time_s"];
+  m["note"] = note;
+  if (m.contains("sessions") && m["sessions"].is_array() && !m["sessions"].empty()) {
+    m["sessions"].back()["exit_state"] = "finished";
+    m["sessions"].back()["note"] = note;
+  }
+  io::remove_checkpoints(dir);
+  m["last_checkpoint"] = nullptr;
+  io::write_file_atomically(dir / "manifest.json", m.dump(2) + "\n");
+  if (!fs::exists(dir / "load_displacement.png", ec)) io::run_plot_tool("plot_history.py", dir);
+  return true;
+}
+
 Scenario run_directory_scenario(const fs::path& dir) {
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) fail("--resume '{}': no such run directory", dir.string());
@@ -175,6 +204,9 @@ struct Control {
   Real ramp() const { return plate ? plate->ramp_time : bar ? bar->ramp_time : 0.0; }
 };
 
+// Snapshots expected to take more than this (bytes) are announced at the set-up.
+constexpr double kLargeOutputBytes = 1e9;
+
 // How many steps the run will take, where a rule tells: for the history and snapshot spacing and
 // the progress line.
 Real expected_steps(const Scenario& sc, const Simulation& sim, const Control& control) {
@@ -224,6 +256,7 @@ class RunLoop {
   nlohmann::ordered_json summary_json(const RunSummary& r, double wall, double loop_s);
   void finish_manifest(const RunSummary& r, double wall, std::chrono::steady_clock::time_point end);
   RunSummary partial_summary() const;
+  void warn_output_volume() const;
 
   const Scenario& sc_;
   const fs::path out_;
@@ -302,6 +335,34 @@ void RunLoop::check_spacing_or_start() {
   loop_.snapshot_every = snapshot_every;
   snapshots_.write(sim_);
   history_.record(sim_);
+  warn_output_volume();
+}
+
+// The outputs' volume from the first snapshot's size and the expected count: said at the set-up
+// when it is large (over 1 GB or a fifth of the disk's free space), or when more snapshots were
+// asked for than the run has steps, so that a mistyped output.snapshots does not silently fill a
+// disk.
+void RunLoop::warn_output_volume() const {
+  std::error_code ec;
+  double first = 0.0;
+  for (const auto& e : fs::directory_iterator(out_ / "snapshots", ec))
+    first += static_cast<double>(e.file_size(ec));
+  const double count = 1.0 + std::floor(expected_ / static_cast<double>(loop_.snapshot_every));
+  const double bytes = first * count;
+  const fs::space_info space = fs::space(out_, ec);
+  const double free = ec ? std::numeric_limits<double>::infinity()
+                         : static_cast<double>(space.available);
+  const bool every_step = static_cast<double>(sc_.output.snapshots) > expected_;
+  if (bytes < kLargeOutputBytes && bytes < 0.2 * free && !every_step) return;
+  std::string why = every_step ? fmt::format(
+                                     "; output.snapshots = {} is more than the run's {:.0f} steps",
+                                     sc_.output.snapshots, expected_)
+                               : fmt::format("; output.snapshots = {}", sc_.output.snapshots);
+  if (bytes >= 0.2 * free) why += fmt::format("; {:.3g} GB are free on its disk", free / 1e9);
+  fmt::print(stderr,
+             "rcdem: warning: the snapshots will take about {:.3g} GB ({:.0f} snapshots of {:.3g} "
+             "MB each{}); lower output.snapshots, or stop the run\n",
+             bytes / 1e9, count, first / 1e6, why);
 }
 
 // One step and the control's load after it; a failure keeps what the run recorded so far.

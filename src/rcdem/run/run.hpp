@@ -71,4 +71,9 @@ RunSummary run_scenario(const Scenario& scenario, const std::filesystem::path& o
 // directory that is not a run, or whose run has finished.
 Scenario run_directory_scenario(const std::filesystem::path& dir);
 
+// A run killed after writing summary.json but before its manifest's last update: the manifest
+// completed (finished, checkpoints removed, the plot drawn if missing). Returns false, touching
+// nothing, for any other directory.
+bool complete_finished_run(const std::filesystem::path& dir);
+
 }  // namespace rcdem

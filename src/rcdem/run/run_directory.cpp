@@ -111,7 +111,8 @@ bool is_output_name(const std::string& name) {
       "broken_points.csv", "particles_initial.vtu", "particles.vtu",    "facets.vtu",
       "snapshots",       "particles.pvd",        "facets.pvd",         "bars.pvd",
       "load_displacement.png", "plot.log",       "calibration.json",   "calibrated_contact.toml",
-      "figure7.png",     "compression",          "tension",            "final"};
+      "figure7.png",     "compression",          "tension",            "final",
+      "manifest.json.damaged"};
   if (name.find('\n') != std::string::npos) return false;
   if (exact.count(name)) return true;
   if (starts_with(name, "checkpoint_") && name.find(".rcp") != std::string::npos) return true;

@@ -114,7 +114,17 @@ void Manifest::load_existing() {
   if (!on_) return;
   const std::string text = read_text(path_);
   j_ = nlohmann::ordered_json::parse(text, nullptr, false);
-  if (j_.is_discarded() || !j_.is_object()) j_ = nlohmann::ordered_json::object();
+  if (j_.is_discarded() || !j_.is_object()) {
+    // The record of the run's earlier sessions is lost, not the run: kept for a reader, said.
+    std::error_code ec;
+    const fs::path kept = path_.string() + ".damaged";
+    fs::rename(path_, kept, ec);
+    fmt::print(stderr,
+               "rcdem: warning: {} is damaged (not a JSON object); kept as {}, and a new manifest "
+               "started for this session\n",
+               path_.string(), ec ? std::string("(could not be renamed)") : kept.string());
+    j_ = nlohmann::ordered_json::object();
+  }
   if (!j_.contains("sessions") || !j_["sessions"].is_array())
     j_["sessions"] = nlohmann::ordered_json::array();
   for (auto& s : j_["sessions"])

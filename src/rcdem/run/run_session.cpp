@@ -50,8 +50,12 @@ fs::path RunSession::scenario_file(const Scenario& sc) {
 void RunSession::check_inputs_unchanged() {
   const auto& j = manifest_.json();
   if (!j.contains("inputs") || !j["inputs"].is_array()) return;
+  bool first = true;
   for (const auto& was : j["inputs"]) {
     const std::string path = was.value("path", ""), hash = was.value("fnv1a64", "");
+    // The first input is the scenario's text, which a resume reads from the run's own copy.
+    const std::string named = first ? (out_ / "scenario.toml").string() : path;
+    first = false;
     bool found = false;
     for (const auto& now : inputs_.list)
       if (now["path"] == path) {
@@ -60,7 +64,7 @@ void RunSession::check_inputs_unchanged() {
           fail(
               "cannot resume '{}': the scenario input '{}' changed since the run started "
               "(FNV-1a {} then, {} now); restore it, or start a new run",
-              out_.string(), path, hash, now["fnv1a64"].get<std::string>());
+              out_.string(), named, hash, now["fnv1a64"].get<std::string>());
       }
     if (!found)
       fail("cannot resume '{}': the scenario no longer reads '{}' as it did when the run started",

@@ -400,6 +400,9 @@ int run_study(const StudyOptions& o) {
   if (ec) fail("{}: cannot create the study's directory: {}", o.out.string(), ec.message());
   // One study at a time in a directory: a second one would clear the first's cases as it sets up.
   const io::RunLock study_lock(o.out, true);
+  // The report describes a completed study: whatever stops this one (a damaged case, a signal,
+  // the report itself failing) must not leave the previous report looking current.
+  if (!o.report_script.empty()) remove_report(o.out);
   StudyRun study(o, std::move(todo));
   if (!study.run_pending()) {
     fmt::print(stderr,
@@ -407,10 +410,7 @@ int run_study(const StudyOptions& o) {
                "again to resume (finished cases are kept)\n");
     return -1;
   }
-  if (!o.report_script.empty()) {
-    remove_report(o.out);  // a failed report must not leave the previous one looking current
-    io::run_report_tool(o.report_script, o.out);
-  }
+  if (!o.report_script.empty()) io::run_report_tool(o.report_script, o.out);
   if (!Progress::quiet_default())
     fmt::print(stderr, "study {}: {} of {} cases finished; tables and figures in {}\n", o.label,
                cases - static_cast<std::size_t>(study.failed()), cases, o.out.string());
