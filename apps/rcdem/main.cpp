@@ -224,6 +224,10 @@ int calibrate(const fs::path& scenario_path, fs::path out, bool force, double si
               double rate_factor, const std::vector<std::string>& sets, const std::string& target,
               double tolerance, int iterations, bool peak_only, const std::string& lever) {
   rcdem::Scenario base = rcdem::load_scenario(scenario_path);
+  for (std::size_t k = 0; k < sets.size(); ++k)
+    for (std::size_t j = 0; j < k; ++j)
+      if (sets[j].substr(0, sets[j].find('=')) == sets[k].substr(0, sets[k].find('=')))
+        rcdem::fail("--set: {} is given twice", sets[k].substr(0, sets[k].find('=')));
   for (const auto& item : sets) apply_override(base, item);
   rcdem::CalibrationOptions opt;
   opt.uniaxial.size = size;

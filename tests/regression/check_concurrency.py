@@ -130,13 +130,16 @@ def replaced_results(tmp: Path, small: Path, refused: Path, failing: Path) -> No
           "... and the directory holds the failed run alone, not the earlier one's summary")
 
     # A --force killed between setting the earlier results aside and its run's start.
+    # As rcdem does it: the journal of the entries to move first, then the moves.
+    failed_run = snapshot(d)
     aside = d / ".rcdem-replaced"
     aside.mkdir()
-    for p in list(d.iterdir()):
-        if p.name not in (".rcdem-replaced", "run.lock"):
-            p.rename(aside / p.name)
-    (d / "partial.vtu").write_text("from the killed command\n")
-    failed_run = snapshot(aside)
+    moved = [p for p in d.iterdir() if p.name not in (".rcdem-replaced", "run.lock",
+                                                       ".rcdem-outputs")]
+    (aside / ".rcdem-journal").write_text("".join(p.name + "\n" for p in moved))
+    for p in moved:
+        p.rename(aside / p.name)
+    (d / "particles.vtu").write_text("from the killed command\n")
     r = run(["generate", str(small), "-o", str(d)])
     check(r.returncode == 1 and "not empty" in r.stderr, "the next command finds DIR not empty")
     check(snapshot(d) == failed_run and not aside.exists(),

@@ -200,6 +200,47 @@ struct Reader {
   }
 };
 
+// The bilinear law's softening branch must be less steep than its elastic branch (no snap-back,
+// paper (S2)-(S3)): u_ult = 2 G_f / strength above u_0 = strength d / (E_bar [alpha]) for the
+// longest contacts, whose centres lie about one largest diameter d apart.
+void check_softening_is_stable(const Reader& r, const Scenario& s) {
+  if (s.law != "BL") return;
+  const auto& c = s.contact;
+  const Real d = std::max(s.generation.aggregate_d_max, s.generation.mortar_d_max);
+  const Real need_n = c.sigma_nt * c.sigma_nt * d / (2.0 * c.E_bar);
+  const Real need_s = c.tau * c.tau * d / (2.0 * c.alpha * c.E_bar);
+  const bool normal = c.G_fn < need_n;
+  if (!normal && !(c.G_fs < need_s)) return;
+  const char* key = normal ? "contact.G_fn" : "contact.G_fs";
+  fail(
+      "{}: key '{}' = {} J/m^2 is too small for the bilinear law: its softening branch would be "
+      "steeper than the elastic one (snap-back) at contacts {} m long; expected at least {:.4g} "
+      "J/m^2 ({} d / (2 E_bar{}))",
+      r.at(key), key, normal ? c.G_fn : c.G_fs, d, normal ? need_n : need_s,
+      normal ? "sigma_nt^2" : "tau^2", normal ? "" : " alpha");
+}
+
+// Names of plates and bars become history.csv's column names and file names: short, and
+// letters, digits, '_' and '-' only.
+void check_section_names(const Reader& r) {
+  for (const char* pattern : {"plates.*", "bars.*"}) {
+    const auto it = r.instances.find(pattern);
+    if (it == r.instances.end()) continue;
+    for (const auto& inst : it->second) {
+      const std::string name = inst.substr(inst.find('.') + 1);
+      const bool ok = !name.empty() && name.size() <= 64 &&
+                      std::all_of(name.begin(), name.end(), [](char ch) {
+                        return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' ||
+                               ch == '-';
+                      });
+      if (!ok)
+        fail("{}: section [{}{}]: expected a name of 1 to 64 letters, digits, '_' or '-'",
+             r.at(inst), std::string(pattern, pattern + 6),
+             name.size() > 40 ? name.substr(0, 40) + "..." : name);
+    }
+  }
+}
+
 void check_consistency(const Reader& r, const Scenario& s) {
   const auto& g = s.generation;
   if (g.aggregate_d_min > g.aggregate_d_max)
@@ -226,6 +267,7 @@ void check_consistency(const Reader& r, const Scenario& s) {
         "{}: key 'specimen.notch_depth' ({} m) must leave at least two particle diameters of the "
         "depth ({} m)",
         r.at("specimen.notch_depth"), s.specimen.notch_depth, s.specimen.size.z());
+  check_softening_is_stable(r, s);
   const SpecimenGeometry geometry = specimen_geometry(s);
   const Real volume = geometry.volume();
   const Real smallest = kPi / 6.0 * std::pow(std::min(g.aggregate_d_min, g.mortar_d_min), 3);
@@ -362,6 +404,7 @@ Scenario convert(Reader& r, const std::string& text) {
   Scenario s;
   s.source = r.file;
   s.text = text;
+  check_section_names(r);
   set_bound(r, config::scenario_bindings().scenario, "", s);
   check_solver(r, s);
   for (const auto& inst : r.instances["plates.*"]) s.plates.push_back(convert_plate(r, s, inst));

@@ -99,6 +99,22 @@ Vec3 boundary_push(const Vec3& p, Real r, const SpecimenGeometry& g) {
   return push;
 }
 
+// The generator fills the solid volume to within one sphere: a target porosity finer than that
+// cannot be met, and is refused rather than silently missed.
+void check_porosity_met(const GenerationSettings& s, Real volume, Real agg_volume,
+                        const std::vector<Real>& mortar_radii) {
+  Real solid = agg_volume;
+  for (Real r : mortar_radii) solid += sphere_volume(r);
+  const Real reached = 1.0 - solid / volume;
+  if (std::abs(reached - s.porosity) <= 0.1 * s.porosity) return;
+  const Real one = sphere_volume(0.5 * s.mortar_d_max) / volume;
+  fail(
+      "key 'generation.porosity' = {} cannot be met: the spheres drawn leave a porosity of {:.3g} "
+      "(the generator fills the volume to within one sphere, and the largest mortar sphere is "
+      "{:.3g} of it); expected a porosity of at least {:.3g}",
+      s.porosity, reached, one, 10.0 * one);
+}
+
 }  // namespace
 
 Particles generate_packing(const GenerationSettings& s, const SpecimenGeometry& g,
@@ -125,6 +141,7 @@ Particles generate_packing(const GenerationSettings& s, const SpecimenGeometry& 
         "({:.4g} m^3)",
         agg_volume, s.porosity, solid_target);
   std::vector<Real> mortar_radii = draw_radii(mortar, solid_target - agg_volume, rng);
+  check_porosity_met(s, volume, agg_volume, mortar_radii);
 
   Particles particles;
   const std::size_t n = agg_radii.size() + mortar_radii.size();
