@@ -23,5 +23,6 @@ fi
 
 BUILD_DIR=${BUILD_DIR:-build}
 # The portable reference build (CMakePresets.json "release"); RCDEM_NATIVE=ON for -march=native.
-cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release -DRCDEM_NATIVE="${RCDEM_NATIVE:-OFF}" >/dev/null
+cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release -DRCDEM_NATIVE="${RCDEM_NATIVE:-OFF}" \
+      ${RCDEM_WERROR:+-DRCDEM_WERROR=$RCDEM_WERROR} >/dev/null
 cmake --build "$BUILD_DIR" -j "$(nproc)"

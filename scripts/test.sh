@@ -1,6 +1,16 @@
 #!/usr/bin/env bash
-# Sets up (scripts/setup.sh), builds, and runs every test: unit, verification and regression.
+# Sets up (scripts/setup.sh), builds with warnings as errors, and runs every test: unit,
+# verification and regression; then the unit and verification tests again under AddressSanitizer
+# and UndefinedBehaviorSanitizer (CMakePresets.json "asan-ubsan", build-asan/), but for the few
+# long specimen runs, which the first pass covers. RCDEM_SKIP_SANITIZERS=1 skips the second pass.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/setup.sh
+RCDEM_WERROR=ON bash scripts/setup.sh
 OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive} ctest --test-dir "${BUILD_DIR:-build}" --output-on-failure -j "$(nproc)" "$@"
+[ "${RCDEM_SKIP_SANITIZERS:-0}" = 1 ] && exit 0
+# Minutes each under the sanitizers, seconds in the first pass.
+LONG='StrainGauges.ElasticModulusDoesNotDependOnCubeSize|ElasticCondensation.(Tension|Compression)RunMatchesThePointLoopThroughDamage|CriticalTimeStep.(ReinforcedCube|Stable|Cundall)|ExponentialSoftening.BoxInTension|Checkpoint.StateDoesNotDependOnThreadCount|BarStatics.Cantilever'
+cmake --preset asan-ubsan -DRCDEM_WERROR=ON >/dev/null
+cmake --build build-asan -j "$(nproc)" --target rcdem_unit_tests rcdem_verification_tests
+OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive} ctest --test-dir build-asan --output-on-failure \
+  -j "$(nproc)" -L 'unit|verification' -E "$LONG"
