@@ -18,7 +18,7 @@
 
 #include "rcdem/calibration/calibrate.hpp"
 #include "rcdem/config/scenario.hpp"
-#include "rcdem/config/scenario_seed.hpp"
+#include "rcdem/config/scenario_overrides.hpp"
 #include "rcdem/config/schema.hpp"
 #include "rcdem/core/build_info.hpp"
 #include "rcdem/core/child_process.hpp"
@@ -135,7 +135,8 @@ void restore_interrupted_force(const fs::path& dir) {
 
 int run(const fs::path& scenario_path, fs::path out, bool force, const fs::path& resume,
         std::string checkpoint_every, bool checkpoint_every_given,
-        std::optional<std::uint64_t> seed, const std::vector<std::string>& command) {
+        std::optional<std::uint64_t> seed, const std::vector<std::string>& sets,
+        const std::vector<std::string>& command) {
   rcdem::RunOptions options;
   options.handle_signals = true;
   options.command = command;
@@ -150,10 +151,10 @@ int run(const fs::path& scenario_path, fs::path out, bool force, const fs::path&
   if (!resume.empty()) {
     if (!scenario_path.empty())
       rcdem::fail("run: give a scenario or --resume DIR, not both (DIR holds its scenario)");
-    if (!out.empty() || force || seed)
+    if (!out.empty() || force || seed || !sets.empty())
       rcdem::fail(
           "run --resume '{}': the run continues in its own directory with its own scenario; drop "
-          "-o/--force/--seed",
+          "-o/--force/--seed/--set",
           resume.string());
     restore_interrupted_force(resume);
     if (rcdem::complete_finished_run(resume)) {
@@ -172,7 +173,8 @@ int run(const fs::path& scenario_path, fs::path out, bool force, const fs::path&
     r = rcdem::run_scenario(scenario, resume, options);
   } else {
     if (scenario_path.empty()) rcdem::fail("run: give a scenario file (or --resume DIR)");
-    const rcdem::Scenario scenario = rcdem::config::load_scenario_on_seed(scenario_path, seed);
+    const rcdem::Scenario scenario =
+        rcdem::config::load_scenario_on_seed(scenario_path, seed, sets);
     rcdem::validate_run(scenario);
     if (out.empty()) out = default_output(scenario_path);
     rcdem::io::OutputDirectory dir(out, force, {scenario_path});
@@ -184,51 +186,10 @@ int run(const fs::path& scenario_path, fs::path out, bool force, const fs::path&
   return r.stop_reason == "interrupted" ? 128 + r.signal : 0;
 }
 
-// --set NAME=VALUE for the contact parameters and the seed of a calibration.
-void apply_override(rcdem::Scenario& s, const std::string& item) {
-  const auto eq = item.find('=');
-  if (eq == std::string::npos) rcdem::fail("--set '{}': expected NAME=VALUE", item);
-  const std::string name = item.substr(0, eq);
-  char* end = nullptr;
-  const double v = std::strtod(item.c_str() + eq + 1, &end);
-  if (end == item.c_str() + eq + 1 || *end != '\0' || !std::isfinite(v))
-    rcdem::fail("--set '{}': expected a number after '='", item);
-  auto& c = s.contact;
-  struct Key {
-    const char* name;
-    double* value;
-    bool positive;
-  };
-  const Key keys[] = {{"contact.E_bar", &c.E_bar, true}, {"contact.alpha", &c.alpha, false},
-                      {"contact.mu_c", &c.mu_c, false},  {"contact.sigma_nt", &c.sigma_nt, true},
-                      {"contact.tau", &c.tau, true},     {"contact.G_fn", &c.G_fn, true},
-                      {"contact.G_fs", &c.G_fs, true}};
-  for (const auto& k : keys)
-    if (name == k.name) {
-      if (k.positive ? !(v > 0.0) : !(v >= 0.0))
-        rcdem::fail("--set '{}': {} must be {}", item, name, k.positive ? "> 0" : ">= 0");
-      *k.value = v;
-      return;
-    }
-  if (name == "generation.seed" && v >= 0.0 && v == std::floor(v)) {
-    s.generation.seed = static_cast<std::uint64_t>(v);
-    return;
-  }
-  rcdem::fail(
-      "--set '{}': unknown or invalid (expected contact.E_bar, contact.alpha, contact.mu_c, "
-      "contact.sigma_nt, contact.tau, contact.G_fn, contact.G_fs or generation.seed)",
-      item);
-}
-
 int calibrate(const fs::path& scenario_path, fs::path out, bool force, double size,
               double rate_factor, const std::vector<std::string>& sets, const std::string& target,
               double tolerance, int iterations, bool peak_only, const std::string& lever) {
-  rcdem::Scenario base = rcdem::load_scenario(scenario_path);
-  for (std::size_t k = 0; k < sets.size(); ++k)
-    for (std::size_t j = 0; j < k; ++j)
-      if (sets[j].substr(0, sets[j].find('=')) == sets[k].substr(0, sets[k].find('=')))
-        rcdem::fail("--set: {} is given twice", sets[k].substr(0, sets[k].find('=')));
-  for (const auto& item : sets) apply_override(base, item);
+  rcdem::Scenario base = rcdem::config::load_scenario_on_seed(scenario_path, std::nullopt, sets);
   rcdem::CalibrationOptions opt;
   opt.uniaxial.size = size;
   opt.uniaxial.rate_factor = rate_factor;
@@ -261,7 +222,7 @@ int calibrate(const fs::path& scenario_path, fs::path out, bool force, double si
 // non-empty directory is refused unless --force.
 int study(const std::string& name, fs::path scenarios, fs::path out, bool force, bool quick,
           const std::vector<std::string>& cases, const std::vector<std::uint64_t>& seeds,
-          int jobs) {
+          const std::vector<std::string>& sets, int jobs) {
   rcdem::StudyOptions o;
   o.label = name + (quick ? " (quick)" : "");
   o.scenarios = scenarios.empty() ? rcdem::builtin_study_scenarios(name, quick) : scenarios;
@@ -272,6 +233,7 @@ int study(const std::string& name, fs::path scenarios, fs::path out, bool force,
   o.out = out;
   o.cases = cases;
   o.seeds = seeds;
+  o.sets = sets;
   o.force = force;
   // Quick cases are small: one per core, one thread each, beats one case on every core.
   const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
@@ -287,6 +249,26 @@ int study(const std::string& name, fs::path scenarios, fs::path out, bool force,
   rcdem::io::prepare_output_directory(out);
   const int failed = rcdem::run_study(o);
   return failed == 0 ? 0 : failed < 0 ? 130 : 5;
+}
+
+// An error is one line, whatever the names in it hold: control characters (a newline in a file
+// name) written as C escapes.
+std::string one_line(const std::string& text) {
+  std::string out;
+  for (const char ch : text) {
+    const auto u = static_cast<unsigned char>(ch);
+    if (ch == '\n')
+      out += "\\n";
+    else if (ch == '\r')
+      out += "\\r";
+    else if (ch == '\t')
+      out += "\\t";
+    else if (u < 0x20 || u == 0x7f)
+      out += fmt::format("\\x{:02x}", u);
+    else
+      out += ch;
+  }
+  return out;
 }
 
 // The first word that is not an option, when it names no subcommand (CLI11 would only say that
@@ -340,6 +322,11 @@ int main(int argc, char** argv) {
                    "0 = only on SIGINT/SIGTERM)")
       ->type_name("N|T")
       ->capture_default_str();
+  std::vector<std::string> sets;
+  const char* set_help =
+      "Set a scenario key as if written in the file: KEY=VALUE (e.g. solver.damping=0.3, "
+      "plates.top.velocity=-0.05, specimen.shape=beam); repeatable";
+  runc->add_option("--set", sets, set_help)->type_name("KEY=VALUE");
   std::uint64_t run_seed = 0;
   runc->add_option("--seed", run_seed,
                    "Run on another packing: generation.seed set to N (kept in DIR/scenario.toml)")
@@ -347,7 +334,6 @@ int main(int argc, char** argv) {
 
   double size = 0.160, rate_factor = 1.0, tolerance = 0.05;
   int iterations = 8;
-  std::vector<std::string> sets;
   std::string target;
   auto* cal = app.add_subcommand(
       "calibrate", "Uniaxial compression and tension on a cube: E, nu, sigma_c, sigma_t (SPEC 9)");
@@ -360,7 +346,7 @@ int main(int argc, char** argv) {
   cal->add_option("--size", size, "Cube side [m]")->check(CLI::PositiveNumber);
   cal->add_option("--rate-factor", rate_factor, "Multiply the loading rates (quasi-static checks)")
       ->check(CLI::PositiveNumber);
-  cal->add_option("--set", sets, "Override a parameter: contact.NAME=VALUE or generation.seed=N");
+  cal->add_option("--set", sets, set_help)->type_name("KEY=VALUE");
   cal->add_option("--target", target,
                   "Search contact parameters for E=..,nu=..,sigma_c=..,sigma_t=.. (SI)");
   cal->add_option("--tolerance", tolerance, "Relative tolerance of the search")
@@ -397,6 +383,8 @@ int main(int argc, char** argv) {
   stc->add_option("--scenarios", study_scenarios,
                   "A directory of scenarios to run instead of the built-in ones");
   stc->add_flag("--force", force, "Rerun finished cases");
+  stc->add_option("--set", sets, std::string(set_help) + "; applied to every case")
+      ->type_name("KEY=VALUE");
   int jobs = 0;
   stc->add_option("-j,--jobs", jobs,
                   "Cases run side by side (default: one per core with --quick, else 1)")
@@ -420,7 +408,8 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);
-    std::cerr << "rcdem: error: " << e.what() << " (rcdem --help lists the commands and options)\n";
+    std::cerr << "rcdem: error: " << one_line(e.what())
+              << " (rcdem --help lists the commands and options)\n";
     return 2;
   }
   rcdem::Progress::set_quiet_default(quiet);
@@ -430,20 +419,21 @@ int main(int argc, char** argv) {
       return run(scenario, out, force, resume, checkpoint_every,
                  runc->count("--checkpoint-every") > 0,
                  runc->count("--seed") > 0 ? std::optional<std::uint64_t>(run_seed) : std::nullopt,
-                 std::vector<std::string>(argv, argv + argc));
+                 sets, std::vector<std::string>(argv, argv + argc));
     if (*cal)
       return calibrate(scenario, out, force, size, rate_factor, sets, target, tolerance, iterations,
                        peak_only, tension_lever);
-    if (*stc) return study(study_name, study_scenarios, out, force, quick, cases, seeds, jobs);
+    if (*stc)
+      return study(study_name, study_scenarios, out, force, quick, cases, seeds, sets, jobs);
     if (*schema) {
       rcdem::config::scenario_schema().print_template(std::cout);
       return 0;
     }
   } catch (const rcdem::Error& e) {
-    std::cerr << "rcdem: error: " << e.what() << "\n";
+    std::cerr << "rcdem: error: " << one_line(e.what()) << "\n";
     return 1;
   } catch (const std::exception& e) {
-    std::cerr << "rcdem: internal error: " << e.what() << "\n";
+    std::cerr << "rcdem: internal error: " << one_line(e.what()) << "\n";
     return 3;
   }
   return 0;

@@ -147,6 +147,8 @@ class Fuzzer:
         """Puts one of the user's entries into d; returns its path."""
         name = self.rng.choice(ODD_NAMES)
         path = os.path.join(d, name)
+        while os.path.lexists(path):
+            path += "_"
         kind = self.rng.choice(["file", "dir", "symlink", "fifo"])
         if kind == "file":
             open(path, "w").write("the user's " + str(self.rng.random()))

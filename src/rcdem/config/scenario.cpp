@@ -29,6 +29,7 @@ struct Reader {
   std::map<std::string, int> lines;
 
   std::string where(const toml::node& node) const {
+    if (file.rfind("--set ", 0) == 0) return file;  // a value from the command line
     return fmt::format("{}:{}", file, node.source().begin.line);
   }
 
@@ -194,7 +195,11 @@ struct Reader {
   const std::string& string(const std::string& p) const {
     return std::get<std::string>(values.at(p));
   }
+  // Keys set from the command line (--set): where messages say they come from.
+  std::map<std::string, std::string> origin;
+
   std::string at(const std::string& p) const {
+    if (const auto o = origin.find(p); o != origin.end()) return o->second;
     const auto it = lines.find(p);
     return it == lines.end() ? file + " (default value)" : fmt::format("{}:{}", file, it->second);
   }
@@ -453,14 +458,33 @@ void read_includes(toml::table& table, const std::string& source_name, Reader& r
 
 }  // namespace
 
-Scenario parse_scenario(const std::string& text, const std::string& source_name) {
+Scenario parse_scenario(const std::string& text, const std::string& source_name,
+                        const std::vector<config::Override>& overrides) {
   toml::table table = config::parse_scenario_toml(text, source_name);
-  Reader reader{config::scenario_schema(), source_name, {}, {}, {}};
+  Reader reader{config::scenario_schema(), source_name, {}, {}, {}, {}};
   read_includes(table, source_name, reader);
   reader.read_table(table, "");
+  for (const auto& o : overrides) reader.origin[o.key] = "--set '" + o.given + "'";
   reader.fill_defaults();
-  return convert(reader, text);
+  Scenario s = convert(reader, text);
+  for (const auto& o : overrides) s.overrides.push_back(o.given);
+  return s;
 }
+
+namespace config {
+
+void check_override(const Override& o) {
+  toml::table table;
+  try {
+    table = toml::parse(o.key + " = " + o.value, std::string_view{"--set"});
+  } catch (const toml::parse_error& e) {
+    fail("--set '{}': not a key and a value ({})", o.given, e.description());
+  }
+  Reader reader{scenario_schema(), "--set '" + o.given + "'", {}, {}, {}, {}};
+  reader.read_table(table, "");
+}
+
+}  // namespace config
 
 Scenario load_scenario(const std::filesystem::path& path) {
   Scenario s = parse_scenario(config::read_scenario_file(path, "scenario"), path.string());

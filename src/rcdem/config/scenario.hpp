@@ -157,6 +157,7 @@ struct Scenario {
   LoadingRateSettings loading_rate;
   StopSettings stop;
   OutputSettings output;
+  std::vector<std::string> overrides;   // --set KEY=VALUE items applied to `text`
   std::string text;                     // the scenario as given, kept for the run directory
   std::map<std::string, int> key_line;  // where each key was set, for later error messages
 };
@@ -164,6 +165,24 @@ struct Scenario {
 // Reads, validates (types, ranges, unknown keys, cross-key consistency) and converts a scenario.
 // Throws rcdem::Error with "file:line: ..." on any problem.
 Scenario load_scenario(const std::filesystem::path& path);
-Scenario parse_scenario(const std::string& text, const std::string& source_name);
+namespace config {
+
+// One `--set KEY=VALUE` (config/scenario_overrides.hpp): VALUE is a TOML value (0.3, "beam",
+// [0.1, 0.1, 0.1], true), or a bare word taken as a string (beam).
+struct Override {
+  std::string key;
+  std::string value;  // as TOML text
+  std::string given;  // KEY=VALUE as on the command line, for messages
+};
+
+// Checks one override's key and value against the schema as if written in a file; errors name
+// "--set 'KEY=VALUE'".
+void check_override(const Override& o);
+
+}  // namespace config
+
+// `overrides`: the --set items already written into `text`; errors about their keys name them.
+Scenario parse_scenario(const std::string& text, const std::string& source_name,
+                        const std::vector<config::Override>& overrides = {});
 
 }  // namespace rcdem

@@ -83,6 +83,7 @@ void RunSession::fill_manifest(const Scenario& sc) {
     j["inputs"] = inputs_.list;
     j["inputs_hash"] = fmt::format("{:016x}", inputs_.hash);
     j["seed"] = sc.generation.seed;
+    j["set"] = sc.overrides;  // --set KEY=VALUE items, already in scenario.toml's text
     j["command"] = opt_.command;
     j["rcdem_version"] = version;
     j["git_hash"] = git;

@@ -15,7 +15,7 @@
 #include <set>
 
 #include "rcdem/config/scenario.hpp"
-#include "rcdem/config/scenario_seed.hpp"
+#include "rcdem/config/scenario_overrides.hpp"
 #include "rcdem/core/child_process.hpp"
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
@@ -112,12 +112,14 @@ void write_tables(const fs::path& out, const std::vector<CaseRecord>& cases,
 // process, output to DIR/run.log (appended to on a resume). The child stops (checkpointing) when
 // the study dies, even by SIGKILL.
 pid_t spawn_run(const fs::path& scenario, const fs::path& dir, int threads, bool resume,
-                std::optional<std::uint64_t> seed) {
+                std::optional<std::uint64_t> seed, const std::vector<std::string>& sets) {
   std::vector<std::string> args =
       resume ? std::vector<std::string>{"rcdem", "run", "--resume", dir.string()}
              : std::vector<std::string>{"rcdem", "run",        scenario.string(),
                                         "-o",    dir.string(), "--force"};
   if (!resume && seed) args.insert(args.end(), {"--seed", std::to_string(*seed)});
+  if (!resume)
+    for (const auto& item : sets) args.insert(args.end(), {"--set", item});
   SpawnOptions o;
   o.log = dir / "run.log";
   o.append_log = resume;
@@ -193,7 +195,7 @@ std::vector<StudyCase> load_cases(const StudyOptions& o) {
   for (const auto& f : files) {
     if (!wanted.empty() && !wanted.count(f.stem().string())) continue;
     for (const auto& seed : seeds) {
-      Scenario s = config::load_scenario_on_seed(f, seed);
+      Scenario s = config::load_scenario_on_seed(f, seed, o.sets);
       validate_run(s);
       todo.push_back({f, std::move(s), seed});
     }
@@ -321,7 +323,8 @@ void StudyRun::start_next(std::map<pid_t, std::size_t>& running, std::size_t& ne
         fmt::print(stderr, "{}: {} ({}; log {})\n", records_[i].label(),
                    resume ? "resumed from its last checkpoint" : "started", todo_[i].file.string(),
                    (dir / "run.log").string());
-      running[spawn_run(todo_[i].file, dir, o_.threads_per_job, resume, todo_[i].seed)] = i;
+      running[spawn_run(todo_[i].file, dir, o_.threads_per_job, resume, todo_[i].seed, o_.sets)] =
+          i;
     } catch (const Error& e) {
       finish(i, e.what());
     }

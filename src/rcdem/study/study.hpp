@@ -16,6 +16,7 @@ struct StudyOptions {
   // Run every case on each of these packings (generation.seed), into DIR/cases/<case>_seed<N>/;
   // empty: each case on its scenario's own seed, into DIR/cases/<case>/.
   std::vector<std::uint64_t> seeds;
+  std::vector<std::string> sets;  // --set KEY=VALUE items applied to every case
   std::string report_script;  // tools/<script> run on DIR at the end ("" for none)
   std::string label;          // what the study is, for study.json and messages
   bool force = false;         // rerun finished cases

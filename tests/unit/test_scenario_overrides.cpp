@@ -1,5 +1,5 @@
-// `rcdem run --seed` and a study's `--seeds`: the scenario's text with generation.seed set and
-// every other byte kept, wherever the file sets (or does not set) the seed.
+// `--set KEY=VALUE`, `rcdem run --seed` and a study's `--seeds`: the scenario's text with keys set
+// and every other byte kept, wherever the file sets (or does not set) them.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -7,7 +7,7 @@
 #include <string>
 
 #include "rcdem/config/scenario.hpp"
-#include "rcdem/config/scenario_seed.hpp"
+#include "rcdem/config/scenario_overrides.hpp"
 #include "rcdem/core/error.hpp"
 
 namespace rcdem::config {
@@ -77,6 +77,56 @@ TEST(ScenarioSeed, RefusesWhatItCannotEditNamingTheFile) {
   }
   EXPECT_NE(message_of("generation.porosity = 0.1\n").find("set it in the file"),
             std::string::npos);
+}
+
+Override one(const std::string& item) { return parse_overrides({item}).front(); }
+
+std::string override_error(const std::vector<std::string>& items) {
+  try {
+    for (const auto& o : parse_overrides(items)) check_override(o);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ScenarioOverride, WritesTheValueWhereTheFileSetsIt) {
+  const std::string text = std::string(kBox) + "# damping\n[solver]\ndamping = 0.2  # why\n";
+  EXPECT_EQ(with_override(text, "t.toml", one("solver.damping=0.3")),
+            std::string(kBox) + "# damping\n[solver]\ndamping = 0.3  # why\n");
+  // Under its section's header when the file does not set it; a section appended when it has none.
+  EXPECT_EQ(with_override(text, "t.toml", one("solver.time_step=1e-7")),
+            std::string(kBox) + "# damping\n[solver]\ntime_step = 1e-7\ndamping = 0.2  # why\n");
+  EXPECT_EQ(with_override(kBox, "t.toml", one("stop.steps=200")),
+            std::string(kBox) + "\n[stop]\nsteps = 200\n");
+  // A named section's key, a string given as a bare word, an array.
+  const std::string plate = std::string(kBox) + "[plates.top]\nface = \"z+\"\n";
+  EXPECT_EQ(with_override(plate, "t.toml", one("plates.top.velocity=-0.1")),
+            std::string(kBox) + "[plates.top]\nvelocity = -0.1\nface = \"z+\"\n");
+  EXPECT_EQ(with_override(kBox, "t.toml", one("specimen.shape=beam")),
+            "[specimen]\nshape = \"beam\"\nsize = [0.05, 0.05, 0.05]\n");
+  EXPECT_EQ(with_override(kBox, "t.toml", one("specimen.size=[0.1, 0.1, 0.1]")),
+            "[specimen]\nshape = \"box\"\nsize = [0.1, 0.1, 0.1]\n");
+}
+
+TEST(ScenarioOverride, TheScenarioReadIsTheOneWithTheValue) {
+  const std::string text = with_override(kBox, "t.toml", one("solver.damping=0.25"));
+  EXPECT_EQ(parse_scenario(text, "t.toml").solver.damping, 0.25);
+}
+
+TEST(ScenarioOverride, ErrorsNameTheCommandLine) {
+  EXPECT_EQ(override_error({"solver.damping=abc"}),
+            "--set 'solver.damping=abc': key 'solver.damping': expected a number in [0, 1), got "
+            "\"abc\"");
+  EXPECT_EQ(override_error({"solver.damping=2"}).rfind("--set 'solver.damping=2': key", 0), 0u);
+  EXPECT_NE(override_error({"solver.dampin=0.3"}).find("unknown key 'solver.dampin' (known in "
+                                                       "[solver]:"),
+            std::string::npos);
+  EXPECT_EQ(override_error({"stop.steps=1", "stop.steps=2"}), "--set: stop.steps is given twice");
+  EXPECT_EQ(override_error({"=3"}).rfind("--set '=3': expected KEY=VALUE", 0), 0u);
+  EXPECT_EQ(override_error({"solver=3"}).rfind("--set 'solver=3': 'solver' is a section", 0), 0u);
+  EXPECT_EQ(override_error({"specimen.shape=\"unterminated"}).rfind("--set", 0), 0u);
+  EXPECT_EQ(override_error({"solver.damping=0.3"}), "");
 }
 
 }  // namespace
