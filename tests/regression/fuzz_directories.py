@@ -2,7 +2,7 @@
 """A seeded fuzzer of what lies around a scenario (issue 44): output directories, checkpoints,
 signals and studies, the second generator beside fuzz_scenarios.py.
 
-From three artefacts made once (a finished run, a run interrupted after three checkpoints, a
+From three artefacts made once (a finished run, a run interrupted after two checkpoints, a
 finished study of two cases), each case takes a fresh copy, changes it in one or two random ways
 and runs rcdem on it:
 
@@ -108,7 +108,7 @@ class Fuzzer:
         p = subprocess.Popen([self.rcdem, "-q", "run", self.scenario, "-o", self.interrupted,
                               "--checkpoint-every", "100"], stdout=subprocess.DEVNULL,
                              stderr=subprocess.DEVNULL)
-        while p.poll() is None and len(self.checkpoints(self.interrupted)) < 3:
+        while p.poll() is None and len(self.checkpoints(self.interrupted)) < 2:
             time.sleep(0.005)
         p.send_signal(signal.SIGINT)
         p.wait()
