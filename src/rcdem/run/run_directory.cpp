@@ -66,14 +66,22 @@ std::set<std::string> names_in(const fs::path& dir, bool* readable = nullptr) {
   return names;
 }
 
-// rcdem's mark, or a run directory of an rcdem older than the mark (its manifest.json).
+bool json_object_with(const fs::path& file, std::initializer_list<const char*> keys) {
+  const auto j = nlohmann::json::parse(read_text(file), nullptr, false);
+  if (j.is_discarded() || !j.is_object()) return false;
+  for (const char* k : keys)
+    if (!j.contains(k)) return false;
+  return true;
+}
+
+// rcdem's mark, or the results of an rcdem older than the mark: a run's manifest.json, a
+// generation's summary.json, a calibration's calibration.json.
 bool bears_mark(const fs::path& dir) {
   std::error_code ec;
   if (fs::is_regular_file(fs::symlink_status(dir / OutputDirectory::kMarkName, ec))) return true;
-  const std::string text = read_text(dir / "manifest.json");
-  const auto m = nlohmann::json::parse(text, nullptr, false);
-  return !m.is_discarded() && m.is_object() && m.contains("manifest_version") &&
-         m.contains("rcdem_version");
+  return json_object_with(dir / "manifest.json", {"manifest_version", "rcdem_version"}) ||
+         json_object_with(dir / "summary.json", {"particles", "contacts", "local_points"}) ||
+         json_object_with(dir / "calibration.json", {"E", "nu", "sigma_c", "sigma_t"});
 }
 
 void write_mark(const fs::path& dir) {
