@@ -56,8 +56,10 @@ void SnapshotWriter::write_bars(const Simulation& sim, const std::string& stamp,
   }
   UnstructuredGrid g;
   std::size_t c = 0;
+  std::vector<Real> radius;  // for ParaView's Tube filter (radius varying by this array)
   for (const Bar& br : sim.specimen().bars)
     for (const auto& cyl : br.cylinders) {
+      radius.push_back(0.5 * br.diameter);
       const Index body = first + static_cast<Index>(c);
       const Vec3 axis = b.orientation[body] * cyl.axis;
       const auto id = static_cast<std::int64_t>(g.points.size());
@@ -71,6 +73,7 @@ void SnapshotWriter::write_bars(const Simulation& sim, const std::string& stamp,
   g.add_cell_data("bending_moment", moment);
   g.add_cell_data("yielded", yielded);
   g.add_cell_data("bar", bar);
+  g.add_cell_data("radius", radius);
   emit(g, "bars", stamp, sim.time(), enc, bar_series_);
 }
 
@@ -106,6 +109,9 @@ void SnapshotWriter::write(const Simulation& sim) {
     std::vector<std::int32_t> kind(nc);
     for (std::size_t i = 0; i < nc; ++i) kind[i] = static_cast<std::int32_t>(p.kind[i]);
     g.add_point_data("kind", kind);
+    std::vector<std::int64_t> id(nc);
+    for (std::size_t i = 0; i < nc; ++i) id[i] = static_cast<std::int64_t>(i);
+    g.add_point_data("id", id);  // as in generate's particles.vtu
     std::vector<Vec3> disp(nc), vel(nc);
     for (std::size_t i = 0; i < nc; ++i) {
       disp[i] = b.position[i] - b.position0[i];
@@ -127,9 +133,11 @@ void SnapshotWriter::write(const Simulation& sim) {
   UnstructuredGrid g;
   std::vector<Real> damage, opening;
   std::vector<std::uint8_t> broken;
-  std::vector<std::int64_t> ids;
+  std::vector<std::int64_t> ids, particle_a, particle_b;
   for (Index c = 0; c < net.contact_count(); ++c) {
     const Index ia = net.particle_a[c], ib = net.particle_b[c];
+    particle_a.push_back(ia);
+    particle_b.push_back(ib);
     const Eigen::Matrix3d ra = b.orientation[ia].toRotationMatrix();
     const Eigen::Matrix3d rb = b.orientation[ib].toRotationMatrix();
     const Vec3& n = cs.normal[c];
@@ -155,6 +163,8 @@ void SnapshotWriter::write(const Simulation& sim) {
   g.add_cell_data("damage", damage);
   g.add_cell_data("opening", opening);
   g.add_cell_data("broken", broken);
+  g.add_cell_data("particle_a", particle_a);  // the particles' `id` in the particles series
+  g.add_cell_data("particle_b", particle_b);
   emit(g, "facets", stamp, sim.time(), enc, facet_series_);
 }
 
