@@ -86,11 +86,11 @@ with tempfile.TemporaryDirectory() as tmp:
           f"a folder holding only its scenario is refused ({r.stderr.strip()[:160]})")
     check(tree(only) == before, "the scenario in it is untouched")
 
-    for cmd in (["generate"], ["calibrate"]):
-        r = run(cmd + [os.path.join(inputs, "scenario.toml"), "-o", inputs, "--force"])
-        check(r.returncode != 0 and tree(inputs) == before_inputs
-              if (before_inputs := tree(inputs)) else False,
-              f"`{cmd[0]} --force` on the folder of inputs is refused too, nothing touched")
+    before = tree(inputs)
+    for cmd in ("generate", "calibrate"):
+        r = run([cmd, os.path.join(inputs, "scenario.toml"), "-o", inputs, "--force"])
+        check(r.returncode == 1 and "--force replaces only" in r.stderr and tree(inputs) == before,
+              f"`{cmd} --force` on the folder of inputs is refused too, nothing touched")
 
     # An rcdem run directory with a file of the user's in it.
     runs = os.path.join(tmp, "runs")
