@@ -81,9 +81,23 @@ with tempfile.TemporaryDirectory() as tmp:
     points_on_facets = sa["local_points"] - sa["contacts"]  # local points less the centroids
     r = subprocess.run(["/usr/bin/python3", check_vtu, os.path.join(a, "facets.vtu"),
                         "--points", str(points_on_facets), "--cells", str(sa["contacts"]),
-                        "--cell-fields", "area,local_points,particle_a,particle_b"],
+                        "--cell-fields", "area,local_points,particle_a,particle_b,contact"],
                        capture_output=True, text=True)
     check(r.returncode == 0, f"meshio reads facets.vtu: {r.stdout.strip()} {r.stderr.strip()}")
+    # One cell block per vertex count (the facets written by count), and `contact` gives every
+    # contact's index once.
+    r = subprocess.run(["/usr/bin/python3", "-c", (
+        "import meshio, sys, numpy\n"
+        "m = meshio.read(sys.argv[1])\n"
+        "sizes = [b.data.shape[1] for b in m.cells]\n"
+        "contact = numpy.concatenate(m.cell_data['contact'])\n"
+        "print(len(sizes), int(sizes == sorted(set(sizes))),"
+        " int(sorted(contact.tolist()) == list(range(len(contact)))))"),
+        os.path.join(a, "facets.vtu")], capture_output=True, text=True)
+    blocks, one_per_count, permutation = (r.stdout.split() + ["0", "0", "0"])[:3]
+    check(r.returncode == 0 and one_per_count == "1" and permutation == "1",
+          f"facets.vtu: one meshio block per vertex count ({blocks} blocks), `contact` a "
+          f"permutation of the contacts ({r.stderr.strip()[-200:]})")
 
     # Never overwrite results without being asked.
     before = open(os.path.join(a, "particles.vtu"), "rb").read()

@@ -47,15 +47,18 @@ with tempfile.TemporaryDirectory() as tmp:
     steps = [int(float(x["step"])) for x in rows]
     check(steps == sorted(set(steps)) and steps[-1] == 3000, "history rows are unique, in order, to the end")
     check(float(rows[-1]["max_axial_force_N"]) > 0, "the bar carries force")
-    for kind, fields in (("particles", ["displacement", "velocity", "damage", "radius"]),
-                         ("facets", ["damage", "opening", "broken"]),
-                         ("bars", ["axial_force", "bending_moment", "yielded"])):
+    for kind, fields in (("particles", ["displacement", "velocity", "damage", "radius", "id"]),
+                         ("facets", ["damage", "opening", "broken", "particle_a", "particle_b",
+                                     "contact"]),
+                         ("bars", ["axial_force", "bending_moment", "yielded", "radius"])):
         pvd = os.path.join(out, f"{kind}.pvd")
         check(os.path.exists(pvd), f"{kind}.pvd written")
         last = sorted(f for f in os.listdir(os.path.join(out, "snapshots")) if f.startswith(kind))[-1]
         m = meshio.read(os.path.join(out, "snapshots", last))
         names = set(m.point_data) | set(m.cell_data)
         check(all(f in names for f in fields), f"{last} has {fields}")
+        sizes = [b.data.shape[1] for b in m.cells]
+        check(sizes == sorted(set(sizes)), f"{last}: one cell block per vertex count ({sizes})")
     check(os.path.exists(os.path.join(out, "load_displacement.png")), "load_displacement.png written")
     check(not [f for f in os.listdir(out) if ".tmp." in f], "no temporary files left")
     ms = s["selective_mass_scaling"]

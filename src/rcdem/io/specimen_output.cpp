@@ -1,5 +1,7 @@
 #include "rcdem/io/specimen_output.hpp"
 
+#include <algorithm>
+
 #include "rcdem/io/vtu_writer.hpp"
 
 namespace rcdem::io {
@@ -64,14 +66,24 @@ void write_particles_vtu(const std::filesystem::path& path, const Specimen& s, b
   write_vtu(path, grid, binary ? VtuEncoding::Binary : VtuEncoding::Ascii);
 }
 
+std::vector<Index> facet_order(const ContactNetwork& contacts) {
+  std::vector<Index> order(static_cast<std::size_t>(contacts.contact_count()));
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = static_cast<Index>(k);
+  std::stable_sort(order.begin(), order.end(), [&](Index a, Index b) {
+    return contacts.points_of(a) < contacts.points_of(b);
+  });
+  return order;
+}
+
 void write_facets_vtu(const std::filesystem::path& path, const Specimen& s, bool binary) {
   const ContactNetwork& c = s.contacts;
   UnstructuredGrid grid;
   std::vector<std::int64_t> ids;
   std::vector<Real> area;
   std::vector<std::int32_t> points;
-  std::vector<std::int64_t> pa, pb;
-  for (Index k = 0; k < c.contact_count(); ++k) {
+  std::vector<std::int64_t> pa, pb, contact;
+  for (const Index k : facet_order(c)) {
+    contact.push_back(k);
     ids.clear();
     // The centroid is the first local point; the polygon is the vertices after it.
     for (Index m = c.point_begin[k] + 1; m < c.point_begin[k + 1]; ++m) {
@@ -88,6 +100,7 @@ void write_facets_vtu(const std::filesystem::path& path, const Specimen& s, bool
   grid.add_cell_data("local_points", points);
   grid.add_cell_data("particle_a", pa);
   grid.add_cell_data("particle_b", pb);
+  grid.add_cell_data("contact", contact);
   write_vtu(path, grid, binary ? VtuEncoding::Binary : VtuEncoding::Ascii);
 }
 

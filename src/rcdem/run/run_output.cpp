@@ -4,6 +4,7 @@
 
 #include "rcdem/contact/contact_kinematics.hpp"
 #include "rcdem/io/atomic_file.hpp"
+#include "rcdem/io/specimen_output.hpp"
 #include "rcdem/io/vtu_writer.hpp"
 
 namespace rcdem::io {
@@ -133,9 +134,10 @@ void SnapshotWriter::write(const Simulation& sim) {
   UnstructuredGrid g;
   std::vector<Real> damage, opening;
   std::vector<std::uint8_t> broken;
-  std::vector<std::int64_t> ids, particle_a, particle_b;
-  for (Index c = 0; c < net.contact_count(); ++c) {
+  std::vector<std::int64_t> ids, particle_a, particle_b, contact;
+  for (const Index c : facet_order(net)) {
     const Index ia = net.particle_a[c], ib = net.particle_b[c];
+    contact.push_back(c);
     particle_a.push_back(ia);
     particle_b.push_back(ib);
     const Eigen::Matrix3d ra = b.orientation[ia].toRotationMatrix();
@@ -165,6 +167,7 @@ void SnapshotWriter::write(const Simulation& sim) {
   g.add_cell_data("broken", broken);
   g.add_cell_data("particle_a", particle_a);  // the particles' `id` in the particles series
   g.add_cell_data("particle_b", particle_b);
+  g.add_cell_data("contact", contact);  // the contact's index (cells are in facet_order)
   emit(g, "facets", stamp, sim.time(), enc, facet_series_);
 }
 
