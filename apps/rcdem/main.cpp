@@ -292,7 +292,7 @@ int main(int argc, char** argv) {
   rcdem::stop_with_parent_process();
   CLI::App app{"rcdem: 3D rigid-particle model for reinforced-concrete fracture"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", std::string(rcdem::build_version()) + " (" +
+  app.set_version_flag("--version", "rcdem " + std::string(rcdem::build_version()) + " (" +
                                         rcdem::build_git_hash() + ", " + rcdem::build_flavour() +
                                         ")");
   bool quiet = false;

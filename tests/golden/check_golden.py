@@ -172,7 +172,7 @@ def compare(case, ref, v, curve):
 
 def version(rcdem):
     r = subprocess.run([rcdem, "--version"], capture_output=True, text=True)
-    text = r.stdout.strip()  # "0.1.0 (HASH, BUILD)"
+    text = r.stdout.strip()  # "rcdem 0.1.0 (HASH, BUILD)"
     inner = text[text.index("(") + 1:text.rindex(")")]
     git, build = inner.split(", ", 1)
     return git, build

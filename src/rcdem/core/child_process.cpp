@@ -120,15 +120,21 @@ void pass_on_interrupt(const ChildStatus& status) {
   std::raise(status.signal);
 }
 
-fs::path own_tool(const std::string& name) {
+fs::path own_file(const fs::path& relative) {
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   std::vector<fs::path> roots;
-  if (!ec) roots.push_back(exe.parent_path().parent_path() / "share" / "rcdem" / "tools");
-  roots.push_back(fs::path(RCDEM_SOURCE_DIR) / "tools");
+  if (!ec) roots.push_back(exe.parent_path().parent_path() / "share" / "rcdem");
+  roots.push_back(fs::path(RCDEM_SOURCE_DIR));
   for (const auto& root : roots)
-    if (fs::is_regular_file(root / name, ec)) return root / name;
+    if (fs::exists(root / relative, ec)) return (root / relative).lexically_normal();
   return {};
+}
+
+fs::path own_tool(const std::string& name) {
+  const fs::path p = own_file(fs::path("tools") / name);
+  std::error_code ec;
+  return fs::is_regular_file(p, ec) ? p : fs::path();
 }
 
 }  // namespace rcdem

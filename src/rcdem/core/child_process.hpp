@@ -44,9 +44,12 @@ void stop_with_parent_process();
 // reaches the whole process group): this process ends by the same signal.
 void pass_on_interrupt(const ChildStatus& status);
 
-// The file of this program's own tools (plotting and report scripts): beside the installed
-// binary (PREFIX/share/rcdem/tools) or in the source tree it was built from, never the working
+// A file of rcdem's own (`relative` to its data: tools/..., examples/...): beside the installed
+// binary (PREFIX/share/rcdem/...), else in the source tree it was built from; never the working
 // directory. Empty when neither has it.
+std::filesystem::path own_file(const std::filesystem::path& relative);
+
+// One of rcdem's tools (plotting and report scripts): own_file("tools/" + name), a regular file.
 std::filesystem::path own_tool(const std::string& name);
 
 }  // namespace rcdem

@@ -156,12 +156,14 @@ fs::path builtin_study_scenarios(const std::string& name, bool quick) {
         "of scenarios with --scenarios)",
         name);
   const fs::path rel = fs::path("examples") / name / "study" / (quick ? "quick" : "");
-  for (const fs::path& root : {fs::path("."), fs::path(RCDEM_SOURCE_DIR)})
-    if (fs::is_directory(root / rel)) return (root / rel).lexically_normal();
-  fail(
-      "study '{}': its scenarios ({}) are neither under the working directory nor under the "
-      "source tree {}",
-      name, rel.string(), RCDEM_SOURCE_DIR);
+  const fs::path found = own_file(rel);
+  std::error_code ec;
+  if (found.empty() || !fs::is_directory(found, ec))
+    fail(
+        "study '{}': its scenarios ({}) are neither installed beside rcdem (share/rcdem) nor in "
+        "the source tree {}",
+        name, rel.string(), RCDEM_SOURCE_DIR);
+  return found;
 }
 
 namespace {
