@@ -24,9 +24,9 @@ struct StudyOptions {
   int threads_per_job = 1;    // OpenMP threads of each child
 };
 
-// Where a built-in study's scenarios live: examples/<name>/study (quick: .../study/quick), from
-// the working directory or from the source tree rcdem was built from. Fails with the list of
-// known studies if `name` is none of them.
+// Where a built-in study's scenarios live: examples/<name>/study (quick: .../study/quick), among
+// rcdem's own files (installed beside it, or the source tree it was built from; never the working
+// directory). Fails with the list of known studies if `name` is none of them.
 std::filesystem::path builtin_study_scenarios(const std::string& name, bool quick);
 
 // Runs the study; returns the number of cases that failed (0: all finished), or -1 when a signal
