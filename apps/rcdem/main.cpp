@@ -393,21 +393,17 @@ int main(int argc, char** argv) {
   auto* schema = app.add_subcommand("print-schema", "Print a documented scenario template");
 
   if (const char* unknown = unknown_subcommand(app, argc, argv)) {
-    std::cerr << "rcdem: error: unknown command '" << unknown
-              << "' (the commands are: generate, run, calibrate, study, print-schema; rcdem "
-                 "--help says more)\n";
+    std::string names;
+    for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
+      names += (names.empty() ? "" : ", ") + sub->get_name();
+    std::cerr << "rcdem: error: unknown command '" << one_line(unknown) << "' (the commands are: "
+              << names << "; rcdem --help says more)\n";
     return 2;
   }
   try {
     app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
     std::cerr << "rcdem: error: " << one_line(e.what())
               << " (rcdem --help lists the commands and options)\n";
     return 2;

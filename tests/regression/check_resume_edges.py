@@ -99,7 +99,8 @@ with tempfile.TemporaryDirectory() as tmp:
     open(os.path.join(d, "checkpoint_000000000200.rcp"), "wb").write(b"left by the kill")
     r = resume(d)
     m = json.load(open(os.path.join(d, "manifest.json")))
-    check(r.returncode == 0 and m["exit_state"] == "finished" and not checkpoints(d)
+    check(r.returncode == 0 and m["exit_state"] == "finished" and m["end_time"]
+          and m["sessions"][-1]["exit_state"] == "finished" and not checkpoints(d)
           and open(os.path.join(d, "summary.json")).read() ==
           open(os.path.join(tmp, "summary.json")).read(),
           f"a run killed before its manifest's last update: --resume completes it (exit "

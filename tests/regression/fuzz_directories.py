@@ -192,6 +192,10 @@ class Fuzzer:
             cls = "STALE"
         self.record("force", "+".join(ops), cls, f"exit {code}: {err.strip()[-160:]}")
 
+    def cut(self, path):
+        """The file cut at a random length shorter than its own."""
+        os.truncate(path, self.rng.randrange(os.path.getsize(path)))
+
     @staticmethod
     def snapshot(path):
         if os.path.islink(path):
@@ -209,7 +213,7 @@ class Fuzzer:
                               "delete", "swap"])
         size = os.path.getsize(path)
         if op == "truncate":
-            os.truncate(path, self.rng.randrange(size))
+            self.cut(path)
         elif op == "flip":
             with open(path, "r+b") as f:
                 for _ in range(self.rng.randint(1, 4)):
@@ -299,8 +303,7 @@ class Fuzzer:
                               "delete-manifest", "foreign-file", "edit-scenario", "cut-summary"])
         scenarios = self.scenarios
         if op == "cut-history":
-            p = os.path.join(case, "history.csv")
-            os.truncate(p, self.rng.randrange(os.path.getsize(p)))
+            self.cut(os.path.join(case, "history.csv"))
         elif op == "delete-history":
             os.remove(os.path.join(case, "history.csv"))
         elif op == "empty-summary":
@@ -310,8 +313,7 @@ class Fuzzer:
             s[self.rng.choice(["peak_load_N", "steps", "seconds"])] = "12"
             json.dump(s, open(os.path.join(case, "summary.json"), "w"))
         elif op == "cut-summary":
-            p = os.path.join(case, "summary.json")
-            os.truncate(p, self.rng.randrange(os.path.getsize(p)))
+            self.cut(os.path.join(case, "summary.json"))
         elif op == "delete-manifest":
             os.remove(os.path.join(case, "manifest.json"))
         elif op == "foreign-file":

@@ -10,8 +10,10 @@
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
 
 #include "rcdem/core/error.hpp"
+#include "rcdem/core/stop_signals.hpp"
 
 extern char** environ;
 
@@ -66,7 +68,9 @@ pid_t spawn_child(const fs::path& exe, const std::vector<std::string>& args,
   posix_spawnattr_init(&attr);
   sigset_t defaults, none;
   sigemptyset(&defaults);
-  for (int sig : {SIGINT, SIGTERM, SIGHUP, SIGXFSZ, SIGPIPE}) sigaddset(&defaults, sig);
+  for (const int sig : kStopSignals) sigaddset(&defaults, sig);
+  sigaddset(&defaults, SIGXFSZ);  // ignored by rcdem (main.cpp), not by its tools
+  sigaddset(&defaults, SIGPIPE);
   sigemptyset(&none);
   posix_spawnattr_setsigdefault(&attr, &defaults);
   posix_spawnattr_setsigmask(&attr, &none);
@@ -99,6 +103,17 @@ ChildStatus wait_child(pid_t pid) {
   return child_status(status);
 }
 
+std::string last_log_line(const fs::path& log) {
+  std::ifstream in(log);
+  std::string line, last;
+  while (std::getline(in, line)) {
+    const auto cr = line.find_last_of('\r');
+    if (cr != std::string::npos) line = line.substr(cr + 1);
+    if (line.find_first_not_of(" \t") != std::string::npos) last = line;
+  }
+  return last.empty() ? "no output (see " + log.string() + ")" : last;
+}
+
 void stop_with_parent_process() {
   const char* parent = std::getenv("RCDEM_PARENT_PID");
   if (!parent) return;
@@ -110,8 +125,7 @@ void stop_with_parent_process() {
 }
 
 void pass_on_interrupt(const ChildStatus& status) {
-  if (status.exited) return;
-  if (status.signal != SIGINT && status.signal != SIGTERM && status.signal != SIGHUP) return;
+  if (status.exited || !is_stop_signal(status.signal)) return;
   std::signal(status.signal, SIG_DFL);
   sigset_t set;
   sigemptyset(&set);

@@ -32,6 +32,11 @@ pid_t spawn_child(const std::filesystem::path& exe, const std::vector<std::strin
 // Waits for `pid`, through EINTR.
 ChildStatus wait_child(pid_t pid);
 
+// The last message in a child's log: its last non-empty line, and of a line a terminal's progress
+// display rewrote with carriage returns, the text after the last one; "no output (see LOG)" when
+// there is none.
+std::string last_log_line(const std::filesystem::path& log);
+
 // A status from waitpid's.
 ChildStatus child_status(int wait_status);
 

@@ -2,8 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <fstream>
-
 #include "rcdem/core/child_process.hpp"
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
@@ -15,14 +13,6 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kPython = "/usr/bin/python3";
-
-std::string last_line_of(const fs::path& log) {
-  std::ifstream in(log);
-  std::string line, last;
-  while (std::getline(in, line))
-    if (line.find_first_not_of(" \t\r") != std::string::npos) last = line;
-  return last.empty() ? "no output" : last;
-}
 
 // The tool's status, or an Error saying why it could not start.
 ChildStatus run_tool(const std::string& script, const fs::path& dir, const fs::path& log) {
@@ -53,7 +43,7 @@ void run_plot_tool(const std::string& script, const fs::path& dir) {
       fmt::print(stderr,
                  "rcdem: warning: plotting failed ({}: {}; see {}); the results are in the CSV "
                  "files\n",
-                 status.describe(), last_line_of(log), log.string());
+                 status.describe(), last_log_line(log), log.string());
   } catch (const Error& e) {
     if (!Progress::quiet_default())
       fmt::print(stderr, "rcdem: warning: no plot: {}; the results are in the CSV files\n",
@@ -66,7 +56,7 @@ void run_report_tool(const std::string& script, const fs::path& dir) {
   const ChildStatus status = run_tool(script, dir, log);
   if (!status.ok())
     fail("{}: the report failed ({}): {} (the whole output is in {})", dir.string(),
-         status.describe(), last_line_of(log), log.string());
+         status.describe(), last_log_line(log), log.string());
 }
 
 }  // namespace rcdem::io

@@ -139,13 +139,17 @@ bool complete_finished_run(const fs::path& dir) {
   const std::string note =
       "completed by --resume: the run wrote summary.json but stopped before its manifest's last "
       "update";
+  const std::string now = io::iso_now();
   m["exit_state"] = "finished";
+  m["end_time"] = now;
   m["steps"] = s["steps"];
   if (s.contains("time_s")) m["time_s"] = s["time_s"];
   m["note"] = note;
   if (m.contains("sessions") && m["sessions"].is_array() && !m["sessions"].empty()) {
-    m["sessions"].back()["exit_state"] = "finished";
-    m["sessions"].back()["note"] = note;
+    auto& last = m["sessions"].back();
+    last["exit_state"] = "finished";
+    last["end_time"] = now;
+    last["note"] = note;
   }
   io::remove_checkpoints(dir);
   m["last_checkpoint"] = nullptr;

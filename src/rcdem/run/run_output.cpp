@@ -135,7 +135,8 @@ void SnapshotWriter::write(const Simulation& sim) {
   std::vector<Real> damage, opening;
   std::vector<std::uint8_t> broken;
   std::vector<std::int64_t> ids, particle_a, particle_b, contact;
-  for (const Index c : facet_order(net)) {
+  if (facet_order_.empty()) facet_order_ = facet_order(net);
+  for (const Index c : facet_order_) {
     const Index ia = net.particle_a[c], ib = net.particle_b[c];
     contact.push_back(c);
     particle_a.push_back(ia);

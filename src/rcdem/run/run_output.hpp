@@ -33,6 +33,7 @@ class SnapshotWriter {
   void emit(const UnstructuredGrid& g, const std::string& kind, const std::string& stamp,
             double time, VtuEncoding enc, std::vector<std::pair<double, std::string>>& series);
   std::vector<std::pair<double, std::string>> particle_series_, facet_series_, bar_series_;
+  std::vector<Index> facet_order_;  // io::facet_order of the (fixed) network, at the first write
 };
 
 class History {

@@ -32,7 +32,7 @@ extern "C" void on_setup_signal(int sig) {
 // then to its whole process group, and the second copy may arrive after the first was handled.
 // Only a signal this long after the first means the user insists.
 constexpr long long kInsistAfterNs = 1'000'000'000;
-// Written and read only by the handlers, which block each other (install's sa_mask).
+// Written and read only by the handlers, which block each other (install_stop_handler).
 timespec g_first_signal = {};
 
 extern "C" void on_stop_signal(int sig) {
@@ -68,35 +68,19 @@ SignalGuard::SignalGuard(bool on, const std::filesystem::path& lock, bool resumi
   g_resuming = resuming ? 1 : 0;
   const std::string l = lock.string();
   if (l.size() < sizeof g_lock_path) std::memcpy(g_lock_path, l.c_str(), l.size() + 1);
-  install(on_setup_signal, &old_int_, &old_term_, &old_hup_);
+  // SA_RESTART: writes in progress go on; the flag is read after the step.
+  install_stop_handler(on_setup_signal, SA_RESTART, &old_);
 }
 
 void SignalGuard::loop() {
-  if (on_) install(on_stop_signal, nullptr, nullptr, nullptr);
+  if (on_) install_stop_handler(on_stop_signal, SA_RESTART);
 }
 
 SignalGuard::~SignalGuard() {
   if (!on_) return;
-  ::sigaction(SIGINT, &old_int_, nullptr);
-  ::sigaction(SIGTERM, &old_term_, nullptr);
-  ::sigaction(SIGHUP, &old_hup_, nullptr);
+  restore_stop_handlers(old_);
   g_signal = 0;
   g_lock_path[0] = 0;
-}
-
-// SIGHUP (the terminal closed) is handled like SIGINT: the run checkpoints and stops.
-void SignalGuard::install(void (*handler)(int), struct sigaction* old_int,
-                          struct sigaction* old_term, struct sigaction* old_hup) {
-  struct sigaction sa = {};
-  sa.sa_handler = handler;
-  sigemptyset(&sa.sa_mask);
-  sigaddset(&sa.sa_mask, SIGINT);  // the handlers never interrupt each other
-  sigaddset(&sa.sa_mask, SIGTERM);
-  sigaddset(&sa.sa_mask, SIGHUP);
-  sa.sa_flags = SA_RESTART;  // writes in progress go on; the flag is read after the step
-  ::sigaction(SIGINT, &sa, old_int);
-  ::sigaction(SIGTERM, &sa, old_term);
-  ::sigaction(SIGHUP, &sa, old_hup);
 }
 
 }  // namespace rcdem

@@ -1,9 +1,12 @@
 #pragma once
-// SIGINT/SIGTERM/SIGHUP during a run (docs/checkpoint.md). During the set-up (generation: seconds to
-// minutes) there is nothing to save: the process ends at once, saying so. From the first step on
-// the handler only raises a flag, which the loop reads after every step to checkpoint and stop.
+// The stop signals (core/stop_signals.hpp) during a run (docs/checkpoint.md). During the set-up
+// (generation: seconds to minutes) there is nothing to save: the process ends at once, saying so.
+// From the first step on the handler only raises a flag, which the loop reads after every step to
+// checkpoint and stop.
 #include <csignal>
 #include <filesystem>
+
+#include "rcdem/core/stop_signals.hpp"
 
 namespace rcdem {
 
@@ -24,12 +27,8 @@ class SignalGuard {
   SignalGuard& operator=(const SignalGuard&) = delete;
 
  private:
-  static void install(void (*handler)(int), struct sigaction* old_int, struct sigaction* old_term,
-                      struct sigaction* old_hup);
   bool on_;
-  struct sigaction old_int_ = {};
-  struct sigaction old_term_ = {};
-  struct sigaction old_hup_ = {};
+  StopActions old_ = {};
 };
 
 }  // namespace rcdem

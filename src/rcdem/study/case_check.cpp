@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cstdlib>
 #include <fstream>
-#include <sstream>
 #include <vector>
 
 #include "rcdem/core/error.hpp"
@@ -51,11 +50,9 @@ const char* kind_name(Kind k) {
 }
 
 nlohmann::json parse_file(const fs::path& file, const char* what) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) fail("{}: cannot read the {}", file.string(), what);
-  std::ostringstream text;
-  text << in.rdbuf();
-  const auto j = nlohmann::json::parse(text.str(), nullptr, false);
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec)) fail("{}: cannot read the {}", file.string(), what);
+  const auto j = nlohmann::json::parse(io::read_text(file), nullptr, false);
   if (j.is_discarded()) fail("{}: not valid JSON (the {} is damaged)", file.string(), what);
   if (!j.is_object()) fail("{}: expected a JSON object (the {} is damaged)", file.string(), what);
   return j;

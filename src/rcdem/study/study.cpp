@@ -8,7 +8,6 @@
 #include <cerrno>
 #include <csignal>
 #include <cstring>
-#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -19,6 +18,7 @@
 #include "rcdem/core/child_process.hpp"
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
+#include "rcdem/core/stop_signals.hpp"
 #include "rcdem/io/atomic_file.hpp"
 #include "rcdem/io/plot_tool.hpp"
 #include "rcdem/run/checkpoint.hpp"
@@ -134,18 +134,6 @@ pid_t spawn_run(const fs::path& scenario, const fs::path& dir, int threads, bool
   }
 }
 
-std::string last_line(const fs::path& file) {
-  std::ifstream in(file);
-  std::string line, last = "no output (see " + file.string() + ")";
-  while (std::getline(in, line)) {
-    // Progress lines end in carriage returns on a terminal; keep the last real message.
-    const auto cr = line.find_last_of('\r');
-    if (cr != std::string::npos) line = line.substr(cr + 1);
-    if (!line.empty()) last = line;
-  }
-  return last;
-}
-
 }  // namespace
 
 fs::path builtin_study_scenarios(const std::string& name, bool quick) {
@@ -206,7 +194,7 @@ std::vector<StudyCase> load_cases(const StudyOptions& o) {
 }
 
 // One study's cases as they run: each a child `rcdem run`, with its share of the threads. The
-// child checkpoints (every 10 minutes and on SIGINT/SIGTERM), so an interrupted case resumes
+// child checkpoints (every 10 minutes and on a stop signal), so an interrupted case resumes
 // where it stopped, and small specimens scale better across processes than across threads.
 class StudyRun {
  public:
@@ -231,7 +219,6 @@ class StudyRun {
   bool quiet_;
   std::vector<CaseRecord> records_;
   std::vector<std::size_t> pending_;
-  std::set<std::size_t> rerun_;  // finished cases whose scenario changed: started afresh
   std::size_t done_ = 0;
   int failed_ = 0;
 };
@@ -258,7 +245,6 @@ CaseRecord StudyRun::initial_record(std::size_t i) {
     fail("{}: a finished case that cannot be trusted: {}; delete {} to run it again", rec.label(),
          found.why, dir.string());
   if (found.state == FinishedCase::State::scenario_changed) {
-    rerun_.insert(i);
     pending_.push_back(i);
     if (!quiet_) fmt::print(stderr, "{}: {}; run again\n", rec.label(), found.why);
     return rec;
@@ -317,7 +303,9 @@ void StudyRun::start_next(std::map<pid_t, std::size_t>& running, std::size_t& ne
   while (next < pending_.size() && static_cast<int>(running.size()) < o_.jobs) {
     const std::size_t i = pending_[next++];
     const fs::path existing = o_.out / "cases" / records_[i].dir;
-    const bool resume = !o_.force && !rerun_.count(i) && fs::exists(existing / "scenario.toml") &&
+    // A pending case with a summary.json (its scenario changed, or --force) starts afresh.
+    const bool resume = !o_.force && !fs::exists(existing / "summary.json") &&
+                        fs::exists(existing / "scenario.toml") &&
                         !io::list_checkpoints(existing).empty();
     try {
       const fs::path dir = resume ? existing : prepare(i);
@@ -335,14 +323,8 @@ void StudyRun::start_next(std::map<pid_t, std::size_t>& running, std::size_t& ne
 
 bool StudyRun::run_pending() {
   g_study_signal = 0;
-  struct sigaction sa {};
-  sa.sa_handler = on_study_signal;  // no SA_RESTART: waitpid returns EINTR
-  sigemptyset(&sa.sa_mask);
-  struct sigaction old_int {
-  }, old_term{}, old_hup{};
-  ::sigaction(SIGINT, &sa, &old_int);
-  ::sigaction(SIGTERM, &sa, &old_term);
-  ::sigaction(SIGHUP, &sa, &old_hup);
+  StopActions old;
+  install_stop_handler(on_study_signal, 0, &old);  // no SA_RESTART: waitpid returns EINTR
   std::map<pid_t, std::size_t> running;
   std::size_t next = 0;
   while (next < pending_.size() || !running.empty()) {
@@ -351,7 +333,7 @@ bool StudyRun::run_pending() {
     int status = 0;
     const pid_t pid = ::waitpid(-1, &status, 0);
     if (pid < 0 && errno == EINTR) {
-      // SIGINT/SIGTERM/SIGHUP: pass it on (a terminal's ^C reached them already); each run then
+      // A stop signal: passed on (a terminal's ^C reached them already); each run then
       // checkpoints and exits, and no further case starts.
       const int sig = g_study_signal;
       for (const auto& [child, _] : running) ::kill(child, sig);
@@ -364,19 +346,16 @@ bool StudyRun::run_pending() {
     const std::size_t i = it->second;
     running.erase(it);
     const fs::path dir = o_.out / "cases" / records_[i].dir;
-    const bool ok =
-        WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(dir / "summary.json");
+    const bool ok = child_status(status).ok() && fs::exists(dir / "summary.json");
     if (!ok && g_study_signal != 0) {
       ++done_;
       records_[i].status = "interrupted";
       write_tables(o_.out, records_, o_);
       continue;
     }
-    finish(i, ok ? "" : last_line(dir / "run.log"));
+    finish(i, ok ? "" : last_log_line(dir / "run.log"));
   }
-  ::sigaction(SIGINT, &old_int, nullptr);
-  ::sigaction(SIGTERM, &old_term, nullptr);
-  ::sigaction(SIGHUP, &old_hup, nullptr);
+  restore_stop_handlers(old);
   return g_study_signal == 0;
 }
 
