@@ -110,7 +110,7 @@ std::uint64_t specimen_fingerprint(const Simulation& s) {
                        sp.contacts.point_count(),
                        pc.size(),
                        static_cast<Index>(s.nodes().size()),
-                       static_cast<Index>(s.interface_contacts().size()),
+                       static_cast<Index>(s.interfaces().size()),
                        static_cast<Index>(s.pulled_bars().size())};
   for (const Index c : counts) o.u64(static_cast<std::uint64_t>(c));
   SaveRecord r{o};

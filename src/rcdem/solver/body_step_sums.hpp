@@ -22,7 +22,7 @@ struct BodyStepSums {
   std::vector<Block> blocks;  // per block of concrete particles
 
   // Sized for `bodies`; the concrete particles are the leading bodies with isotropic inertia
-  // that no bar drives (driven: per body, >= 0 if a pulled bar drives it).
+  // whose motion no part prescribes (driven: per body, >= 0 if one does).
   static BodyStepSums build(const Bodies& bodies, const std::vector<std::int64_t>& driven);
 
   // The checkpoint's "bodies.step" (core/archive.hpp); the blocks are summed again by a step.

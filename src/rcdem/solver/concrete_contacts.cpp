@@ -1,22 +1,140 @@
 #include "rcdem/solver/concrete_contacts.hpp"
 
+#include "rcdem/contact/contact_loop.hpp"
+#include "rcdem/contact/law_loops.hpp"
+#include "rcdem/core/parallel.hpp"
+
 namespace rcdem {
 
-ConcreteContacts ConcreteContacts::build(const Scenario& sc, const ContactNetwork& net,
-                                         const Bodies& bodies) {
-  ConcreteContacts c;
-  c.law = make_contact_law(sc.law, sc.contact);
-  c.contacts.init(net, bodies.position);
-  if (sc.solver.condense_elastic_contacts && condensable(c.law))
-    c.condensation = ElasticCondensation::build(net, bodies.position0);
-  c.body_contacts = BodyContacts::build(net, bodies.size());
-  const auto n = static_cast<std::size_t>(bodies.size());
-  c.rotation.assign(n, Eigen::Matrix3d::Identity());
-  c.rotation_prev = c.rotation;
-  c.position_eval = bodies.position;
-  c.position_prev = bodies.position;
-  c.pose.resize(bodies.size());
-  return c;
+ConcreteContacts::ConcreteContacts(const Scenario& sc, const ContactNetwork& net,
+                                   const Bodies& bodies, const BodyKinematics& kinematics)
+    : net_(&net),
+      bodies_(&bodies),
+      kinematics_(&kinematics),
+      law_(make_contact_law(sc.law, sc.contact)),
+      body_contacts_(BodyContacts::build(net, bodies.size())) {
+  contacts_.init(net, bodies.position);
+  if (sc.solver.condense_elastic_contacts && condensable(law_))
+    condensation_ = ElasticCondensation::build(net, bodies.position0);
+}
+
+ContactInputs ConcreteContacts::inputs(const std::vector<Vec3>& positions,
+                                       const std::vector<Eigen::Matrix3d>& rotation,
+                                       Real dt) const {
+  return {*net_,
+          positions.data(),
+          bodies_->position0.data(),
+          bodies_->angular_velocity.data(),
+          bodies_->orientation0.data(),
+          rotation.data(),
+          nullptr,
+          dt};
+}
+
+void ConcreteContacts::evaluate(const StepContext& ctx) {
+  // Evaluated from the kinematics' copy, so that what a later catch-up reads is what this
+  // evaluation used; a contact condensed at the last step and visited now first has its points
+  // brought up to that step from the previous kinematics.
+  const BodyKinematics& k = ctx.kinematics;
+  ContactInputs now = inputs(k.position, k.rotation, ctx.clock.dt);
+  now.pose = k.pose.ptr();
+  const ContactInputs previous = inputs(k.position_prev, k.rotation_prev, ctx.clock.dt);
+  ElasticCondensation* condensed = condensation_.sums.empty() ? nullptr : &condensation_;
+  evaluate_contacts(law_, now, contacts_, condensed, &previous);
+}
+
+void ConcreteContacts::catch_up(Real dt) const {
+  // The last evaluation's kinematics: kept until the next step forms them anew.
+  if (!condensation_.any_condensed) return;
+  catch_up_condensed(law_, inputs(kinematics_->position, kinematics_->rotation, dt), contacts_,
+                     condensation_);
+}
+
+void ConcreteContacts::scatter(Bodies& bodies) const {
+  const ContactState& cs = contacts_;
+  const BodyContacts& bc = body_contacts_;
+  const Index n = bodies.size();
+  parallel_for(n, [&](Index i) {
+    // A body's B-side contacts belong to particles before it along the curve, some far before:
+    // their forces are no longer in cache, and waiting on them was most of the gather. Requested
+    // a few bodies ahead, they arrive while it sums (measured in bench/RESULTS.md). The A side
+    // streams in contact order.
+    constexpr Index kAhead = 6;
+    if (i + kAhead < n)
+      for (Index e = bc.begin[i + kAhead]; e < bc.mid[i + kAhead]; ++e) {
+        __builtin_prefetch(cs.force_b[bc.entry[e]].data());
+        __builtin_prefetch(cs.torque_b[bc.entry[e]].data());
+      }
+    Vec3 f = Vec3::Zero(), t = Vec3::Zero();
+    for (Index e = bc.begin[i]; e < bc.mid[i]; ++e) {
+      const Index c = bc.entry[e];
+      f += cs.force_b[c];
+      t += cs.torque_b[c];
+    }
+    for (Index e = bc.mid[i]; e < bc.begin[i + 1]; ++e) {
+      const Index c = bc.entry[e];
+      f -= cs.force_b[c];
+      t += cs.torque_a[c];
+    }
+    bodies.force[i] = f;
+    bodies.torque[i] = t;
+  });
+}
+
+void ConcreteContacts::add_dissipation(StepDissipation& d) const {
+  if (!contacts_.block_damage.empty()) {  // the blocked loop summed its blocks
+    for (std::size_t k = 0; k < contacts_.block_damage.size(); ++k) {
+      d.damage += contacts_.block_damage[k];
+      d.friction += contacts_.block_friction[k];
+    }
+    return;
+  }
+  for (Index c = 0; c < net_->contact_count(); ++c) {
+    d.damage += contacts_.dissipated_damage[c];
+    d.friction += contacts_.dissipated_friction[c];
+  }
+}
+
+void ConcreteContacts::add_strain_energy(Real& sum) const {
+  // By fixed blocks of contacts on every thread, then the blocks' sums in order: the same value
+  // at any thread count. A history row asks for it every few dozen steps, and serial it costs
+  // about a whole step of a cracked beam (bench/RESULTS.md).
+  const ContactNetwork& net = *net_;
+  const BodyKinematics& k = *kinematics_;
+  const bool condensed = condensation_.any_condensed;
+  constexpr Index kBlock = 1024;
+  const Index n = net.contact_count();
+  strain_energy_blocks_.assign(static_cast<std::size_t>((n + kBlock - 1) / kBlock), 0.0);
+  std::visit(
+      [&](const auto& law) {
+        parallel_for_blocks(n, kBlock, [&](Index begin, Index end) {
+          // Condensed contacts from their sums at the last evaluation's kinematics (their
+          // histories are stale), the others from their points.
+          Real e = 0.0;
+          for (Index c = begin; c < end; ++c) {
+            const Index a = net.particle_a[c], b = net.particle_b[c];
+            e += condensed && condensation_.condensed[static_cast<std::size_t>(c)]
+                     ? condensed_strain_energy(condensation_.sums, c, k.position[a], k.position[b],
+                                               k.rotation[a], k.rotation[b])
+                     : contacts_.strain_energy(law, net, c);
+          }
+          strain_energy_blocks_[static_cast<std::size_t>(begin / kBlock)] = e;
+        });
+      },
+      law_);
+  Real e = 0.0;
+  for (const Real block : strain_energy_blocks_) e += block;
+  sum += e;
+}
+
+void ConcreteContacts::visit_springs(SpringVisitor& v, const Bodies& bodies) const {
+  const ContactNetwork& nw = *net_;
+  std::vector<Vec3> normal(static_cast<std::size_t>(nw.contact_count()));
+  for (Index c = 0; c < nw.contact_count(); ++c) {
+    const Vec3 d = bodies.position0[nw.particle_b[c]] - bodies.position0[nw.particle_a[c]];
+    normal[c] = Vec3(d / d.norm());
+  }
+  v.network(nw, std::move(normal));
 }
 
 }  // namespace rcdem

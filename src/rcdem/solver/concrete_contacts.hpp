@@ -1,36 +1,65 @@
 #pragma once
-// What the step keeps for the concrete network besides the specimen: its law, every local point's
-// history, the condensation of intact contacts, the body -> contacts index for the gather, and the
-// kinematics of the last two evaluations, which a condensed contact's catch-up reads
-// (contact_loop.hpp, evaluate_contacts).
+// The concrete network as a part of the step (solver/step_part.hpp): its law, every local point's
+// history, the condensation of intact contacts, and the body -> contacts index its gather walks.
+// Its evaluation reads the step's kinematics; a condensed contact's catch-up reads the last
+// evaluation's (contact_loop.hpp, evaluate_contacts).
 #include <vector>
 
 #include "rcdem/config/scenario.hpp"
+#include "rcdem/contact/contact_loop.hpp"
 #include "rcdem/contact/contact_state.hpp"
 #include "rcdem/contact/elastic_condensation.hpp"
 #include "rcdem/contact/laws/law_registry.hpp"
 #include "rcdem/solver/body_contacts.hpp"
+#include "rcdem/solver/step_part.hpp"
 #include "rcdem/state/bodies.hpp"
-#include "rcdem/state/body_poses.hpp"
 
 namespace rcdem {
 
-struct ConcreteContacts {
-  ContactLaw law;  // contact.law
-  // Mutable: condensed contacts' point histories are filled in when first read (logically const).
-  mutable ContactState contacts;
-  mutable ElasticCondensation condensation;  // empty when off or for a law that does not opt in
-  BodyContacts body_contacts;
-  // The bodies' centres at the last evaluation and the one before, and their orientations as
-  // matrices (formed at the start of each step; derived: not part of a checkpoint).
-  std::vector<Vec3> position_eval, position_prev;
-  std::vector<Eigen::Matrix3d> rotation, rotation_prev;
-  BodyPoses pose;  // the same with the centres, for the condensed contacts' kernel
-  mutable std::vector<Real> strain_energy_blocks;  // the strain energy's per-block sums
+class ConcreteContacts final : public StepPart {
+ public:
+  // For the network `net` of the specimen whose bodies are `bodies` (at t = 0); `kinematics`: the
+  // simulation's, read by the evaluation, the catch-up and the strain energy. Both must outlive
+  // the part.
+  ConcreteContacts(const Scenario& sc, const ContactNetwork& net, const Bodies& bodies,
+                   const BodyKinematics& kinematics);
 
-  // For the network `net` of the specimen whose bodies are `bodies` (at t = 0).
-  static ConcreteContacts build(const Scenario& sc, const ContactNetwork& net,
-                                const Bodies& bodies);
+  void evaluate(const StepContext& ctx) override;
+  // Assigns every body's force and torque (it visits every body: the first part in the list).
+  void scatter(Bodies& bodies) const override;
+  void add_dissipation(StepDissipation& d) const override;
+  void add_strain_energy(Real& sum) const override;
+  void visit_springs(SpringVisitor& v, const Bodies& bodies) const override;
+
+  // Brings the histories of the contacts condensed at the last evaluation up to that step.
+  void catch_up(Real dt) const;
+  const ContactLaw& law() const { return law_; }
+  // Mutable: condensed contacts' point histories are filled in when first read (logically const).
+  ContactState& state() const { return contacts_; }
+  const ElasticCondensation& condensation() const { return condensation_; }
+
+  // The checkpoint's "contacts" (core/archive.hpp). Restored: which contacts are intact follows
+  // from the points' damage, and none is condensed (their histories were complete when saved).
+  template <class Archive, class Self>
+  static void serialize(Archive& ar, Self& s) {
+    ContactState::serialize(ar, "contacts", s.contacts_);
+    if constexpr (Archive::loading)
+      if (ar.applying() && !s.condensation_.sums.empty())
+        s.condensation_.reset_flags(*s.net_, s.contacts_.point.damage());
+  }
+
+ private:
+  ContactInputs inputs(const std::vector<Vec3>& positions,
+                       const std::vector<Eigen::Matrix3d>& rotation, Real dt) const;
+
+  const ContactNetwork* net_;
+  const Bodies* bodies_;
+  const BodyKinematics* kinematics_;
+  ContactLaw law_;  // contact.law
+  mutable ContactState contacts_;
+  mutable ElasticCondensation condensation_;  // empty when off or for a law that does not opt in
+  BodyContacts body_contacts_;
+  mutable std::vector<Real> strain_energy_blocks_;  // the strain energy's per-block sums
 };
 
 }  // namespace rcdem

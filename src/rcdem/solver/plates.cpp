@@ -5,6 +5,7 @@
 
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/parallel.hpp"
+#include "rcdem/solver/energy.hpp"
 
 namespace rcdem {
 
@@ -179,15 +180,63 @@ void sum_plate_reactions(std::vector<Plate>& plates, const PlateContacts& pc) {
   }
 }
 
-PlateSet PlateSet::build(const std::vector<PlateSettings>& settings,
-                         const SpecimenGeometry& geometry, const BoundaryFaces& faces,
-                         const Bodies& bodies, const ContactParameters& params) {
-  PlateSet s;
-  s.plates = make_plates(settings, geometry);
-  s.contacts = make_plate_contacts(s.plates, faces, bodies, params);
-  s.force_prev.assign(s.plates.size(), 0.0);
-  s.displacement_prev.assign(s.plates.size(), 0.0);
-  return s;
+PlateSet::PlateSet(const std::vector<PlateSettings>& settings, const SpecimenGeometry& geometry,
+                   const BoundaryFaces& faces, const Bodies& bodies,
+                   const ContactParameters& params)
+    : plates(make_plates(settings, geometry)),
+      contacts(make_plate_contacts(plates, faces, bodies, params)),
+      force_prev(plates.size(), 0.0),
+      displacement_prev(plates.size(), 0.0) {}
+
+Index PlateSet::task_count() const { return (contacts.size() + kTaskSize - 1) / kTaskSize; }
+
+void PlateSet::run_task(Index task, const StepContext& ctx) {
+  const Index end = std::min(contacts.size(), (task + 1) * kTaskSize);
+  for (Index k = task * kTaskSize; k < end; ++k)
+    evaluate_plate_contact(plates, contacts, ctx.bodies, k);
+}
+
+void PlateSet::finish_evaluation() { sum_plate_reactions(plates, contacts); }
+
+void PlateSet::scatter(Bodies& bodies) const {
+  for (Index j = 0; j < contacts.size(); ++j) {
+    const Index i = contacts.particle[j];
+    bodies.force[i] += contacts.force[j];
+    bodies.torque[i] += contacts.torque[j];
+  }
+}
+
+void PlateSet::drive(const Bodies&, const StepClock& clock, Energy& ledger) {
+  // The work done over the last move (trapezoidal in the force), then the next move.
+  for (std::size_t p = 0; p < plates.size(); ++p) {
+    Plate& plate = plates[p];
+    const Real f_on_specimen = -plate.force[plate.axis];
+    const Real work =
+        0.5 * (force_prev[p] + f_on_specimen) * (plate.displacement - displacement_prev[p]);
+    plate.work += work;
+    ledger.external_work += work;
+    force_prev[p] = f_on_specimen;
+    displacement_prev[p] = plate.displacement;
+    plate.displacement += clock.rate * plate.velocity_at(clock.mid()) * clock.dt;
+  }
+}
+
+void PlateSet::add_dissipation(StepDissipation& d) const {
+  for (Index j = 0; j < contacts.size(); ++j) d.friction += contacts.dissipated_friction[j];
+}
+
+void PlateSet::add_strain_energy(Real& sum) const {
+  for (Index j = 0; j < contacts.size(); ++j) sum += contacts.strain_energy[j];
+}
+
+void PlateSet::visit_springs(SpringVisitor& v, const Bodies& bodies) const {
+  // Every plate contact, closed or not: the stiffest the plates can make the assembly.
+  for (Index j = 0; j < contacts.size(); ++j) {
+    const Index i = contacts.particle[j];
+    const LocalPointConstants& k = contacts.constants[j];
+    const Vec3 arm = contacts.point0[j] - bodies.position0[i];
+    v.spring(-1, i, arm, arm, plates[contacts.plate[j]].normal, k.kn, k.ks);
+  }
 }
 
 const Plate* PlateSet::find(const std::string& name) const {

@@ -14,6 +14,7 @@
 #include "rcdem/contact/laws/local_point_state.hpp"
 #include "rcdem/core/archive.hpp"
 #include "rcdem/core/types.hpp"
+#include "rcdem/solver/step_part.hpp"
 #include "rcdem/state/bodies.hpp"
 #include "rcdem/state/contact_network.hpp"
 
@@ -61,16 +62,28 @@ struct PlateContacts {
   Index size() const { return static_cast<Index>(plate.size()); }
 };
 
-// The plates with their contacts, and what the ledger keeps of the last step (their works).
-struct PlateSet {
+// The plates with their contacts as a part of the step (solver/step_part.hpp): the contacts in
+// small tasks, the reactions summed in a fixed order, and after each move the plates' work and
+// their next move under displacement control.
+struct PlateSet final : StepPart {
+  static constexpr Index kTaskSize = 256;  // contacts per task
+
   std::vector<Plate> plates;
   PlateContacts contacts;
   std::vector<Real> force_prev, displacement_prev;  // per plate, at the last step
 
-  static PlateSet build(const std::vector<PlateSettings>& settings,
-                        const SpecimenGeometry& geometry, const BoundaryFaces& faces,
-                        const Bodies& bodies, const ContactParameters& params);
+  PlateSet(const std::vector<PlateSettings>& settings, const SpecimenGeometry& geometry,
+           const BoundaryFaces& faces, const Bodies& bodies, const ContactParameters& params);
   const Plate* find(const std::string& name) const;
+
+  Index task_count() const override;
+  void run_task(Index task, const StepContext& ctx) override;
+  void finish_evaluation() override;
+  void scatter(Bodies& bodies) const override;
+  void drive(const Bodies& bodies, const StepClock& clock, Energy& ledger) override;
+  void add_dissipation(StepDissipation& d) const override;
+  void add_strain_energy(Real& sum) const override;
+  void visit_springs(SpringVisitor& v, const Bodies& bodies) const override;
 
   // The checkpoint's "plates" and "plate_contacts" (core/archive.hpp): what a step changes.
   template <class Archive, class Self>

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "rcdem/solver/energy.hpp"
+
 namespace rcdem {
 
 Real PulledBar::velocity_at(Real t) const {
@@ -9,9 +11,7 @@ Real PulledBar::velocity_at(Real t) const {
   return speed * 0.5 * (1.0 - std::cos(kPi * t / ramp_time));
 }
 
-PulledBars PulledBars::build(const Scenario& sc, const Specimen& specimen, Index bodies) {
-  PulledBars p;
-  p.driven.assign(static_cast<std::size_t>(bodies), -1);
+PulledBars::PulledBars(const Scenario& sc, const Specimen& specimen, PrescribedMotion& motion) {
   Index body = specimen.concrete();
   for (std::size_t k = 0; k < specimen.bars.size(); ++k) {
     const BarSettings& bs = sc.bars[k];
@@ -22,13 +22,32 @@ PulledBars PulledBars::build(const Scenario& sc, const Specimen& specimen, Index
       pb.direction = (bs.start - bs.end).normalized();
       pb.speed = bs.pull_velocity;
       pb.ramp_time = bs.pull_ramp_time;
-      p.driven[static_cast<std::size_t>(body)] = static_cast<std::int64_t>(p.bars.size());
-      p.bars.push_back(pb);
+      slot.push_back(motion.claim(body));
+      bars.push_back(pb);
     }
     body += static_cast<Index>(specimen.bars[k].cylinders.size());
   }
-  p.force_prev.assign(p.bars.size(), 0.0);
-  return p;
+  force_prev.assign(bars.size(), 0.0);
+}
+
+void PulledBars::prescribe(PrescribedMotion& motion, const StepClock& clock) {
+  for (std::size_t k = 0; k < bars.size(); ++k)
+    motion.velocity[slot[k]] = clock.rate * bars[k].velocity_at(clock.mid()) * bars[k].direction;
+}
+
+void PulledBars::drive(const Bodies& bodies, const StepClock& clock, Energy& ledger) {
+  // The driver's work over the last move (trapezoidal in its force), then this move's length.
+  for (std::size_t k = 0; k < bars.size(); ++k) {
+    PulledBar& pb = bars[k];
+    pb.force = bodies.force[pb.body];
+    const Real f_driver = pb.load();
+    const Real work = 0.5 * (force_prev[k] + f_driver) * pb.last_step;
+    pb.work += work;
+    ledger.external_work += work;
+    force_prev[k] = f_driver;
+    pb.last_step = bodies.velocity[pb.body].dot(pb.direction) * clock.dt;
+    pb.displacement += pb.last_step;
+  }
 }
 
 const PulledBar* PulledBars::find(const std::string& name) const {

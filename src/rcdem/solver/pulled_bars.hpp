@@ -8,6 +8,7 @@
 #include "rcdem/config/scenario.hpp"
 #include "rcdem/core/archive.hpp"
 #include "rcdem/core/types.hpp"
+#include "rcdem/solver/step_part.hpp"
 #include "rcdem/specimens/specimen.hpp"
 
 namespace rcdem {
@@ -25,14 +26,19 @@ struct PulledBar {
   Real load() const { return -force.dot(direction); }
 };
 
-struct PulledBars {
+// The pulled bars as a part of the step (solver/step_part.hpp): each prescribes its first
+// cylinder's velocity over the next move, and after it books the driver's work.
+struct PulledBars final : StepPart {
   std::vector<PulledBar> bars;
-  std::vector<std::int64_t> driven;  // per body: index into bars, or -1
-  std::vector<Real> force_prev;      // per bar: the driver's force at the last step (its work)
+  std::vector<std::size_t> slot;  // per bar: its entry in the prescribed motion
+  std::vector<Real> force_prev;   // per bar: the driver's force at the last step (its work)
 
-  // The scenario's pulled bars; `bodies`: the count of all bodies (cylinders after the concrete).
-  static PulledBars build(const Scenario& sc, const Specimen& specimen, Index bodies);
+  // The scenario's pulled bars, whose first cylinders it claims in `motion`.
+  PulledBars(const Scenario& sc, const Specimen& specimen, PrescribedMotion& motion);
   const PulledBar* find(const std::string& name) const;
+
+  void prescribe(PrescribedMotion& motion, const StepClock& clock) override;
+  void drive(const Bodies& bodies, const StepClock& clock, Energy& ledger) override;
 
   // The checkpoint's "pulled_bars" (core/archive.hpp).
   template <class Archive, class Self>

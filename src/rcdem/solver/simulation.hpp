@@ -1,18 +1,24 @@
 #pragma once
-// The explicit rigid-particle solver (SPEC 4-6): state, the fixed step pipeline
-//   contacts -> plate contacts -> gather per body -> damping + leap-frog -> plates move,
-// and the energy ledger. Stop rules, history and snapshots live in the run loop (run.hpp).
+// The explicit rigid-particle solver (SPEC 4-6): the bodies, the parts of the step
+// (solver/step_part.hpp: the concrete network, each bar's interface, the interaction nodes, the
+// pulled bars, the plates), and the step as their composition
+//   evaluate -> scatter -> integrate -> drive -> ledger.
+// Stop rules, history and snapshots live in the run loop (run.hpp).
+#include <memory>
+#include <utility>
 #include <vector>
 
 #include "rcdem/config/scenario.hpp"
 #include "rcdem/contact/contact_loop.hpp"
-#include "rcdem/solver/bar_system.hpp"
-#include "rcdem/solver/body_step_sums.hpp"
+#include "rcdem/solver/bar_interface.hpp"
 #include "rcdem/solver/concrete_contacts.hpp"
 #include "rcdem/solver/energy.hpp"
+#include "rcdem/solver/integrator.hpp"
+#include "rcdem/solver/interaction_nodes.hpp"
 #include "rcdem/solver/loading_rate.hpp"
 #include "rcdem/solver/plates.hpp"
 #include "rcdem/solver/pulled_bars.hpp"
+#include "rcdem/solver/step_part.hpp"
 #include "rcdem/solver/time_step_choice.hpp"
 #include "rcdem/specimens/specimen.hpp"
 #include "rcdem/state/bodies.hpp"
@@ -24,6 +30,9 @@ class Simulation {
   // Takes the specimen; the time step is the stable estimate times solver.dt_safety, or the
   // scenario's fixed step (refused above half the critical estimate: dt_safety's upper bound).
   Simulation(const Scenario& scenario, Specimen specimen);
+  // The parts point into the specimen and the bodies: a simulation stays where it was built.
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
 
   void step();
 
@@ -53,17 +62,17 @@ class Simulation {
   // been visited every step.
   const ContactState& contacts() const {
     catch_up_condensed_points();
-    return concrete_.contacts;
+    return concrete_.state();
   }
   ContactState& contacts() {
     catch_up_condensed_points();
-    return concrete_.contacts;
+    return concrete_.state();
   }
   // Concrete contacts evaluated from their sums at the last step (0 when condensation is off,
   // and after a read of the state above has brought their points up to date).
-  Index condensed_contacts() const { return concrete_.condensation.condensed_count(); }
+  Index condensed_contacts() const { return concrete_.condensation().condensed_count(); }
   Index condensed_points() const {
-    return concrete_.condensation.condensed_point_count(specimen_.contacts);
+    return concrete_.condensation().condensed_point_count(specimen_.contacts);
   }
   // Brings condensed contacts' point histories up to the last step (contacts() does it).
   void catch_up_condensed_points() const;
@@ -73,6 +82,8 @@ class Simulation {
   const Plate* find_plate(const std::string& name) const;
   const PulledBar* find_pulled_bar(const std::string& name) const;
   const std::vector<PulledBar>& pulled_bars() const { return pulled_.bars; }
+  // The parts in the step's order (solver/step_part.hpp).
+  const std::vector<StepPart*>& parts() const { return parts_; }
   // The ledger now. The strain energy is a function of the state, summed here on demand (the
   // loop does not compute it every step: two divisions per local point).
   Energy energy() const;
@@ -83,23 +94,24 @@ class Simulation {
 
   // The bars (SPEC 7-8): cylinders are bodies [concrete_count, size); nodes join consecutive ones.
   Index concrete_count() const { return specimen_.concrete(); }
-  const std::vector<NodeRef>& nodes() const { return bars_.node_refs; }
-  const std::vector<InteractionNode>& node_constants() const { return bars_.nodes; }
-  const std::vector<NodeState>& node_states() const { return bars_.node_states; }
-  const std::vector<NodeForces>& node_forces() const { return bars_.node_forces; }
-  const std::vector<ContactState>& interface_contacts() const { return bars_.interface_states; }
+  const std::vector<NodeRef>& nodes() const { return nodes_.refs(); }
+  const std::vector<InteractionNode>& node_constants() const { return nodes_.constants(); }
+  const std::vector<NodeState>& node_states() const { return nodes_.states(); }
+  const std::vector<NodeForces>& node_forces() const { return nodes_.forces(); }
+  // Each bar's interface, in the specimen's order of interfaces.
+  const std::vector<std::unique_ptr<BarInterface>>& interfaces() const { return interfaces_; }
   Index yielded_nodes() const;
   Real max_axial_force() const;  // largest |N| over the nodes
 
   // Every concrete local point's damage D, current without a catch-up (a condensed contact's points
   // are intact: their stale histories hold D = 0, as the current ones would).
-  PointDamage point_damage() const { return concrete_.contacts.point.damage(); }
+  PointDamage point_damage() const { return concrete_.state().point.damage(); }
   Index damaged_points() const;  // 0 < D < 1, concrete contacts
   Index broken_points() const;   // D = 1, concrete contacts
   Index broken_interface_points() const;
 
   // Steps without the damping term or plates, for verification tests.
-  void set_damping(Real alpha) { damping_ = alpha; }
+  void set_damping(Real alpha) { integrator_.set_damping(alpha); }
 
   // The checkpoint's sections of the simulation, in the file's order (core/archive.hpp; defined in
   // solver/simulation_archive.hpp). Saving expects the condensed contacts caught up; restoring
@@ -110,35 +122,31 @@ class Simulation {
  private:
   void compute_stable_time_step(Real added_mass_limit, TimeStepEstimate estimate,
                                 const std::string& source);
-  // Calls v.network(net, normals), v.spring(a, b, arm_a, arm_b, n, kn, ks) (a < 0: a plate) and
-  // v.rotational(a, b, k) for every spring of SPEC 6's estimates, at t = 0.
-  template <class Visitor>
-  void visit_springs(Visitor&& v) const;
-  ContactInputs concrete_inputs(const std::vector<Vec3>& positions,
-                                const std::vector<Eigen::Matrix3d>& rotation) const;
-  void gather_forces();
-  void integrate();
-  Real concrete_strain_energy() const;
+  // Every spring of SPEC 6's estimates at t = 0, part by part.
+  void visit_springs(SpringVisitor& v) const;
+  StepContext context() { return {bodies_, kinematics_, clock()}; }
+  StepClock clock() const { return {time_, time_step_.dt, loading_rate_.factor()}; }
+  void run_part_tasks();
+  void check_stability() const;
+  void book_step();
 
   Specimen specimen_;
   Bodies bodies_;
+  BodyKinematics kinematics_;
+  PrescribedMotion prescribed_;
   ConcreteContacts concrete_;
-  BarSystem bars_;
+  std::vector<std::unique_ptr<BarInterface>> interfaces_;
+  InteractionNodes nodes_;
   PulledBars pulled_;
   PlateSet plates_;
+  // The step's order (evaluation, scatter, drive), and the ledger's: the dissipation and strain
+  // energy summed as the ledger first summed them (concrete, plates, bars), so that the golden
+  // references' energies are the same bits. A new part goes last in both.
+  std::vector<StepPart*> parts_, ledger_order_;
+  // Every part's small tasks (part, task), run in one parallel region.
+  std::vector<std::pair<StepPart*, Index>> tasks_;
+  Integrator integrator_;
   TimeStepChoice time_step_;
-  BodyStepSums step_sums_;
-  // The small networks (interface contacts of every bar, plate contacts, interaction nodes) as one
-  // list of tasks of a few dozen items each, run in one parallel region: bar by bar each was below
-  // parallel_for's threshold and ran on one thread while the other waited.
-  struct SmallTask {
-    enum Kind { kInterface, kPlates, kNodes } kind;
-    std::size_t bar;  // kInterface: which bar's network
-    Index begin, end;
-  };
-  std::vector<SmallTask> small_tasks_;
-  void run_small_task(const SmallTask& task);
-  Real damping_;
   LoadingRate loading_rate_;
   Real time_ = 0.0;
   std::int64_t steps_ = 0;
