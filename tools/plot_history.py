@@ -3,8 +3,9 @@
 
 usage: plot_history.py RUN_DIR [RUN_DIR ...] [-o OUT.png] [--labels a,b,c]
 One directory: RUN_DIR/load_displacement.png. Several: one figure with a curve each (-o needed).
-The displacement is the control's: a plate's ('<name>_displacement_m') or a pulled bar's
-('<name>_pull_displacement_m'), whichever the run's summary.json names as its control.
+The displacement is the column summary.json names as displacement_column: the control's (a plate's
+'<name>_displacement_m', the mean of several 'control_displacement_m', a pulled bar's
+'<name>_pull_displacement_m') or a gauge's ('gauge_<name>_m'); older runs: the control's.
 """
 import csv
 import json
@@ -18,10 +19,14 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 
 def curve(run_dir):
-    control = json.load(open(os.path.join(run_dir, "summary.json"))).get("control", "")
+    summary = json.load(open(os.path.join(run_dir, "summary.json")))
+    control = summary.get("control", "")
     with open(os.path.join(run_dir, "history.csv")) as f:
         rows = list(csv.DictReader(f))
-    for key in (f"{control}_pull_displacement_m", f"{control}_displacement_m"):
+    column = summary.get("displacement_column", "")
+    if column.startswith("gauge_"):
+        control = column[len("gauge_"):-len("_m")]
+    for key in (column, f"{control}_pull_displacement_m", f"{control}_displacement_m"):
         if rows and key in rows[0]:
             disp = [abs(float(r[key])) for r in rows]
             break

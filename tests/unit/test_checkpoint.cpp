@@ -200,7 +200,7 @@ TEST(Checkpoint, RunPartsRoundTrip) {
   const Specimen specimen = build_specimen(sc);
   TempDir dir;
   Simulation a(sc, specimen);
-  io::History ha(a, "top");
+  io::History ha(a, sc);
   io::SnapshotWriter wa(dir.path() / "a", false, true);
   io::CrackRecord ca(a);
   io::LoopState la;
@@ -221,7 +221,7 @@ TEST(Checkpoint, RunPartsRoundTrip) {
   const fs::path file = io::write_checkpoint(dir.path(), pa, 11);
 
   Simulation b(sc, specimen);
-  io::History hb(b, "top");
+  io::History hb(b, sc);
   io::SnapshotWriter wb(dir.path() / "b", false, true);
   io::CrackRecord cb(b);
   io::LoopState lb;
@@ -460,7 +460,7 @@ TEST(Checkpoint, SectionWidthsAreThoseOfTheFormatVersion) {
   ASSERT_EQ(io::kCheckpointVersion, 5U);
   const Scenario sc = small_run();
   Simulation sim(sc, build_specimen(sc));
-  io::History history(sim, "top");
+  io::History history(sim, sc);
   TempDir dir;
   io::SnapshotWriter snapshots(dir.path(), false, true);
   io::CrackRecord cracks(sim);
@@ -519,7 +519,7 @@ TEST(Checkpoint, ReadsTheFormatBefore) {
   const Specimen specimen = build_specimen(sc);
   TempDir dir;
   Simulation a(sc, specimen);
-  io::History ha(a, "top");
+  io::History ha(a, sc);
   io::LoopState la;
   for (int i = 1; i <= 300; ++i) a.step();
   ha.record(a);
@@ -529,7 +529,7 @@ TEST(Checkpoint, ReadsTheFormatBefore) {
   const std::string v5 = io::encode_checkpoint({&a, &ha, nullptr, nullptr, &la}, 5);
   write_file(dir.path() / "v4.rcp", as_format4(v5));
   Simulation b(sc, specimen);
-  io::History hb(b, "top");
+  io::History hb(b, sc);
   io::LoopState lb;
   const io::CheckpointParts pb{&b, &hb, nullptr, nullptr, &lb};
   EXPECT_EQ(io::restore_checkpoint(dir.path() / "v4.rcp", pb, 5).version, 4U);

@@ -125,6 +125,18 @@ struct Reader {
         value = std::move(v);
         break;
       }
+      case KeyType::StringArray: {
+        const auto* array = node.as_array();
+        if (!array) bad_value(node, decl, describe_node(node), path);
+        std::vector<std::string> v;
+        for (const auto& element : *array) {
+          const auto x = element.value_exact<std::string>();
+          if (!x) bad_value(node, decl, describe_node(element) + " in the array", path);
+          v.push_back(*x);
+        }
+        value = std::move(v);
+        break;
+      }
     }
     values[path] = std::move(value);
     lines[path] = static_cast<int>(node.source().begin.line);
@@ -228,7 +240,7 @@ void check_softening_is_stable(const Reader& r, const Scenario& s) {
 // Names of plates and bars become history.csv's column names and file names: short, and
 // letters, digits, '_' and '-' only.
 void check_section_names(const Reader& r) {
-  for (const char* pattern : {"plates.*", "bars.*"}) {
+  for (const std::string pattern : {"plates.*", "bars.*", "gauges.*"}) {
     const auto it = r.instances.find(pattern);
     if (it == r.instances.end()) continue;
     for (const auto& inst : it->second) {
@@ -240,7 +252,7 @@ void check_section_names(const Reader& r) {
                       });
       if (!ok)
         fail("{}: section [{}{}]: expected a name of 1 to 64 letters, digits, '_' or '-'",
-             r.at(inst), std::string(pattern, pattern + 6),
+             r.at(inst), pattern.substr(0, pattern.size() - 1),
              name.size() > 40 ? name.substr(0, 40) + "..." : name);
     }
   }
@@ -379,8 +391,71 @@ BarSettings convert_bar(const Reader& r, const Scenario& s, const std::string& i
   return b;
 }
 
+bool has_plate(const Scenario& s, const std::string& name) {
+  return std::any_of(s.plates.begin(), s.plates.end(),
+                     [&](const PlateSettings& p) { return p.name == name; });
+}
+
+// One [gauges.NAME] section, its plates checked against the scenario's.
+GaugeSettings convert_gauge(const Reader& r, const Scenario& s, const std::string& inst) {
+  GaugeSettings g;
+  g.name = inst.substr(inst.find('.') + 1);
+  set_bound(r, config::scenario_bindings().gauge, inst, g);
+  const bool opening = g.kind == GaugeKind::Opening;
+  if (opening && !r.lines.count(inst + ".to"))
+    fail("{}: section [{}]: an opening gauge needs its second point: key '{}.to'", r.at(inst),
+         inst, inst);
+  if (opening && (g.to - g.point).norm() <= 0.0)
+    fail("{}: key '{}.to': expected a point other than '{}.point'", r.at(inst + ".to"), inst,
+         inst);
+  if (!opening && g.direction() == GaugeSettings::kAlong)
+    fail("{}: key '{}.direction': 'along' is for opening gauges; expected 'x', 'y' or 'z'",
+         r.at(inst + ".direction"), inst);
+  if (opening && !g.relative_to.empty())
+    fail("{}: key '{}.relative_to': expected only on a displacement gauge", r.at(inst), inst);
+  for (const Vec3* p : {&g.point, opening ? &g.to : &g.point})
+    for (int ax = 0; ax < 3; ++ax)
+      if ((*p)[ax] < 0.0 || (*p)[ax] > s.specimen.size[ax])
+        fail("{}: gauge '{}': the point ({}, {}, {}) m is outside the specimen", r.at(inst),
+             g.name, (*p)[0], (*p)[1], (*p)[2]);
+  for (const auto& name : g.relative_to) {
+    const auto it = std::find_if(s.plates.begin(), s.plates.end(),
+                                 [&](const PlateSettings& p) { return p.name == name; });
+    if (it == s.plates.end())
+      fail("{}: key '{}.relative_to': no plate named '{}'", r.at(inst + ".relative_to"), inst,
+           name);
+    if (it->axis != g.direction())
+      fail("{}: key '{}.relative_to': plate '{}' moves along {}, the gauge measures along {}",
+           r.at(inst + ".relative_to"), inst, name, "xyz"[it->axis], "xyz"[g.direction()]);
+  }
+  return g;
+}
+
+// The plates that make the load exist, once each, and the displacement gauge.
+void check_load_plates(const Reader& r, const Scenario& s) {
+  if (!s.control_plates.empty() && !s.control_plate.empty())
+    fail("{}: set loading.control_plate or loading.control_plates, not both",
+         r.at("loading.control_plates"));
+  for (std::size_t i = 0; i < s.control_plates.size(); ++i) {
+    const std::string& name = s.control_plates[i];
+    if (!has_plate(s, name))
+      fail("{}: key 'loading.control_plates': no plate named '{}' (add a [plates.{}] section)",
+           r.at("loading.control_plates"), name, name);
+    if (std::find(s.control_plates.begin(), s.control_plates.begin() + static_cast<long>(i),
+                  name) != s.control_plates.begin() + static_cast<long>(i))
+      fail("{}: key 'loading.control_plates': plate '{}' is named twice",
+           r.at("loading.control_plates"), name);
+  }
+  if (!s.displacement_gauge.empty() &&
+      std::none_of(s.gauges.begin(), s.gauges.end(),
+                   [&](const GaugeSettings& g) { return g.name == s.displacement_gauge; }))
+    fail("{}: key 'loading.displacement_gauge': no gauge named '{}' (add a [gauges.{}] section)",
+         r.at("loading.displacement_gauge"), s.displacement_gauge, s.displacement_gauge);
+}
+
 // The control named exists: a pulled bar, or a plate, not both.
 void check_control(const Reader& r, const Scenario& s) {
+  check_load_plates(r, s);
   if (!s.control_bar.empty()) {
     const auto it = std::find_if(s.bars.begin(), s.bars.end(),
                                  [&](const BarSettings& b) { return b.name == s.control_bar; });
@@ -389,13 +464,11 @@ void check_control(const Reader& r, const Scenario& s) {
           "{}: key 'loading.control_bar': expected the name of a bar with pull_velocity > 0, "
           "got '{}'",
           r.at("loading.control_bar"), s.control_bar);
-    if (!s.control_plate.empty())
-      fail("{}: set loading.control_plate or loading.control_bar, not both",
+    if (!s.load_plates().empty())
+      fail("{}: set loading.control_plate(s) or loading.control_bar, not both",
            r.at("loading.control_bar"));
   }
-  if (!s.control_plate.empty() &&
-      std::none_of(s.plates.begin(), s.plates.end(),
-                   [&](const PlateSettings& p) { return p.name == s.control_plate; }))
+  if (!s.control_plate.empty() && !has_plate(s, s.control_plate))
     fail("{}: key 'loading.control_plate': no plate named '{}' (add a [plates.{}] section)",
          r.at("loading.control_plate"), s.control_plate, s.control_plate);
 }
@@ -414,6 +487,7 @@ Scenario convert(Reader& r, const std::string& text) {
   check_solver(r, s);
   for (const auto& inst : r.instances["plates.*"]) s.plates.push_back(convert_plate(r, s, inst));
   for (const auto& inst : r.instances["bars.*"]) s.bars.push_back(convert_bar(r, s, inst));
+  for (const auto& inst : r.instances["gauges.*"]) s.gauges.push_back(convert_gauge(r, s, inst));
   check_control(r, s);
   s.key_line = r.lines;
   check_consistency(r, s);

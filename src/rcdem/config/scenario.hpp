@@ -124,6 +124,29 @@ struct BarSettings {
   Real spacing() const { return sphere_spacing > 0.0 ? sphere_spacing : 0.5 * diameter; }
 };
 
+// A gauge (issue 41): a measured displacement, a history.csv column `gauge_NAME_m`.
+//   displacement: the material's displacement at `point` along `axis`, less the mean displacement
+//                 of the `relative_to` plates (a deflection relative to the supports);
+//   opening:      the material at `to` against the material at `point`, along `axis` or along the
+//                 line from `point` to `to` (a crack-mouth opening).
+// The material at a point: the concrete particles whose centres lie within `radius` of it at t = 0
+// (the nearest one when 0), each carrying the point rigidly; their mean.
+enum class GaugeKind { Displacement, Opening };
+struct GaugeSettings {
+  static constexpr int kAuto = -1;   // displacement: z; opening: along the line
+  static constexpr int kAlong = 3;   // along the line from point to `to`
+  std::string name;
+  GaugeKind kind = GaugeKind::Displacement;
+  Vec3 point = Vec3::Zero(), to = Vec3::Zero();
+  int axis = kAuto;  // 0, 1, 2, kAlong or kAuto
+  std::vector<std::string> relative_to;
+  Real radius = 0.0;
+  // The axis index or kAlong, with kAuto resolved.
+  int direction() const {
+    return axis != kAuto ? axis : kind == GaugeKind::Displacement ? 2 : kAlong;
+  }
+};
+
 struct StopSettings {
   Real displacement = 0.0;
   Real load_drop = 0.0;
@@ -153,13 +176,29 @@ struct Scenario {
   std::vector<PlateSettings> plates;  // in the order given
   std::vector<BarSettings> bars;      // in the order given
   std::string control_plate;
+  std::vector<std::string> control_plates;  // or several: the load is their reactions' sum
   std::string control_bar;  // a pulled bar, instead of a control plate
+  std::vector<GaugeSettings> gauges;  // in the order given
+  std::string displacement_gauge;     // the test's displacement, instead of the control's
   LoadingRateSettings loading_rate;
   StopSettings stop;
   OutputSettings output;
   std::vector<std::string> overrides;   // --set KEY=VALUE items applied to `text`
   std::string text;                     // the scenario as given, kept for the run directory
   std::map<std::string, int> key_line;  // where each key was set, for later error messages
+
+  // The plates whose reactions sum to the load: control_plates, or control_plate alone.
+  std::vector<std::string> load_plates() const {
+    if (!control_plates.empty()) return control_plates;
+    if (!control_plate.empty()) return {control_plate};
+    return {};
+  }
+  // The control's name as reports give it: the plates joined by '+', or the pulled bar.
+  std::string control_name() const {
+    std::string name;
+    for (const auto& p : load_plates()) (name += name.empty() ? "" : "+") += p;
+    return name.empty() ? control_bar : name;
+  }
 };
 
 // Reads, validates (types, ranges, unknown keys, cross-key consistency) and converts a scenario.

@@ -23,6 +23,7 @@ struct ScenarioBindings {
   std::vector<BoundKey<Scenario>> scenario;    // keys outside the named sections
   std::vector<BoundKey<PlateSettings>> plate;  // plates.*.KEY, by KEY
   std::vector<BoundKey<BarSettings>> bar;      // bars.*.KEY, by KEY
+  std::vector<BoundKey<GaugeSettings>> gauge;  // gauges.*.KEY, by KEY
 };
 
 const ScenarioBindings& scenario_bindings();

@@ -59,7 +59,8 @@ KeyDecl array(std::string path, int size, Range range, std::string unit, std::st
 template <class M>
 Value to_value(const M& m) {
   if constexpr (std::is_same_v<M, bool> || std::is_same_v<M, std::string> ||
-                std::is_same_v<M, std::vector<double>>)
+                std::is_same_v<M, std::vector<double>> ||
+                std::is_same_v<M, std::vector<std::string>>)
     return m;
   else if constexpr (std::is_floating_point_v<M>)
     return static_cast<double>(m);
@@ -71,7 +72,8 @@ Value to_value(const M& m) {
 template <class M>
 void from_value(const Value& v, M& m) {
   if constexpr (std::is_same_v<M, bool> || std::is_same_v<M, std::string> ||
-                std::is_same_v<M, std::vector<double>>)
+                std::is_same_v<M, std::vector<double>> ||
+                std::is_same_v<M, std::vector<std::string>>)
     m = std::get<M>(v);
   else if constexpr (std::is_floating_point_v<M>)
     m = std::get<double>(v);
@@ -111,6 +113,14 @@ class Declarations {
   template <class... Path>
   void bar(KeyDecl d, Need need, Path... path) {
     bind(std::move(d), need, b_.bar, path...);
+  }
+  template <class... Path>
+  void gauge(KeyDecl d, Need need, Path... path) {
+    bind(std::move(d), need, b_.gauge, path...);
+  }
+  template <class M, class... Path>
+  void gauge(KeyDecl d, std::vector<std::pair<std::string, M>> names, Path... path) {
+    bind_names(std::move(d), std::move(names), b_.gauge, path...);
   }
   // A key whose names stand for values of its member (an enumeration, a flag).
   template <class M, class... Path>
@@ -351,6 +361,44 @@ void declare_plates(Declarations& s) {
           Need::Default, &P::friction);
 }
 
+// Gauges: measured displacements, each a history column.
+void declare_gauges(Declarations& s) {
+  using G = GaugeSettings;
+  s.section("gauges", "Gauges: one [gauges.NAME] table per gauge, each a history.csv column "
+                      "gauge_NAME_m (docs/model.md 12).");
+  s.section("gauges.*", "A displacement gauge (an LVDT) or an opening gauge (a clip gauge).");
+  s.gauge(choice("gauges.*.kind", {},
+                 "'displacement': the material at point, along direction, less the mean "
+                 "displacement of the relative_to plates; 'opening': the material at to against "
+                 "the material at point."),
+          std::vector<std::pair<std::string, GaugeKind>>{{"displacement", GaugeKind::Displacement},
+                                                         {"opening", GaugeKind::Opening}},
+          &G::kind);
+  s.gauge(array("gauges.*.point", 3, Range{}, "m", "The measured point [x, y, z]."),
+          Need::Required, &G::point);
+  s.gauge(array("gauges.*.to", 3, Range{}, "m",
+                "Opening gauges: the second point [x, y, z]; the opening is positive as the two "
+                "move apart."),
+          Need::Default, &G::to);
+  s.gauge(choice("gauges.*.direction", {},
+                 "Which component: 'x', 'y', 'z', 'along' (opening: along the line from point to "
+                 "to) or 'auto' (displacement: 'z'; opening: 'along')."),
+          std::vector<std::pair<std::string, int>>{{"auto", G::kAuto},
+                                                   {"x", 0},
+                                                   {"y", 1},
+                                                   {"z", 2},
+                                                   {"along", G::kAlong}},
+          &G::axis);
+  s.gauge(typed("gauges.*.relative_to", KeyType::StringArray, Range{},
+                "Displacement gauges: plates on the same axis whose mean displacement is "
+                "subtracted (the supports, for a deflection)."),
+          Need::Default, &G::relative_to);
+  s.gauge(real("gauges.*.radius", Range{0.0, 10.0}, "m",
+               "The material at a point: the concrete particles whose centres lie within this "
+               "distance of it (0: the nearest particle), their mean motion."),
+          Need::Default, &G::radius);
+}
+
 // What controls the test and when it stops.
 void declare_loading_and_stop(Declarations& s) {
   using S = Scenario;
@@ -361,6 +409,15 @@ void declare_loading_and_stop(Declarations& s) {
               "Name of the plate whose reaction is the load and whose displacement is "
               "controlled."),
         Need::Default, &S::control_plate);
+  s.key(typed("loading.control_plates", KeyType::StringArray, Range{},
+              "Or: the plates whose reactions sum to the load (four-point bending's two loading "
+              "plates); the displacement is their mean."),
+        Need::Default, &S::control_plates);
+  s.key(typed("loading.displacement_gauge", KeyType::String, Range{},
+              "A gauge (a [gauges.NAME] section) whose value is the test's displacement instead "
+              "of the control's: in summary.json, the stop rules, the progress line and the "
+              "load-displacement plot."),
+        Need::Default, &S::displacement_gauge);
   s.key(typed("loading.control_bar", KeyType::String, Range{},
               "Or: name of a pulled bar (pull_velocity > 0) whose pull-out force is the load."),
         Need::Default, &S::control_bar);
@@ -489,6 +546,7 @@ Built build() {
   declare_solver(s);
   declare_plates(s);
   declare_loading_and_stop(s);
+  declare_gauges(s);
   declare_bars(s);
   declare_output(s);
   return b;

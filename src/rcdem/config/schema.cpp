@@ -74,6 +74,11 @@ std::string format_value(const Value& value) {
       for (std::size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + (*this)(v[i]);
       return s + "]";
     }
+    std::string operator()(const std::vector<std::string>& v) const {
+      std::string s = "[";
+      for (std::size_t i = 0; i < v.size(); ++i) s += (i ? ", " : "") + (*this)(v[i]);
+      return s + "]";
+    }
   };
   return std::visit(Visitor{}, value);
 }
@@ -115,6 +120,8 @@ std::string Schema::describe_expected(const KeyDecl& decl) {
     case KeyType::RealArray:
       what = fmt::format("an array of {} numbers", decl.array_size);
       break;
+    case KeyType::StringArray:
+      return "an array of names";
   }
   const std::string range = describe_range(decl.range);
   if (!range.empty()) what += (decl.type == KeyType::RealArray ? ", each " : " ") + range;

@@ -13,9 +13,10 @@
 
 namespace rcdem::config {
 
-enum class KeyType { Real, Integer, Boolean, String, RealArray };
+enum class KeyType { Real, Integer, Boolean, String, RealArray, StringArray };
 
-using Value = std::variant<double, std::int64_t, bool, std::string, std::vector<double>>;
+using Value = std::variant<double, std::int64_t, bool, std::string, std::vector<double>,
+                           std::vector<std::string>>;
 
 struct Range {
   double min = -std::numeric_limits<double>::infinity();

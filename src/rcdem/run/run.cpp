@@ -34,6 +34,7 @@
 #include "rcdem/run/crack_record.hpp"
 #include "rcdem/run/observers.hpp"
 #include "rcdem/run/run_manifest.hpp"
+#include "rcdem/solver/test_measures.hpp"
 #include "rcdem/run/run_output.hpp"
 #include "rcdem/run/run_session.hpp"
 #include "rcdem/run/run_signals.hpp"
@@ -86,13 +87,15 @@ void validate_run(const Scenario& s) {
         "{}: no stop rule: set stop.displacement, stop.load_drop, stop.post_peak_displacement, "
         "stop.time or stop.steps",
         s.source.string());
-  const PlateSettings* control = find(s, s.control_plate);
+  const std::vector<std::string> load_plates = s.load_plates();
+  const PlateSettings* control = load_plates.size() == 1 ? find(s, load_plates[0]) : nullptr;
   if ((s.stop.displacement > 0.0 || s.stop.load_drop > 0.0 ||
        s.stop.post_peak_displacement > 0.0) &&
-      !control && s.control_bar.empty())
+      load_plates.empty() && s.control_bar.empty())
     fail(
         "{}: stop.displacement, stop.load_drop and stop.post_peak_displacement need "
-        "loading.control_plate (or loading.control_bar), the plate (or pulled bar) they refer to",
+        "loading.control_plate(s) (or loading.control_bar), the plates (or pulled bar) they refer "
+        "to",
         config::key_location(
             s, s.stop.displacement > 0.0
                    ? "stop.displacement"
@@ -118,7 +121,7 @@ void validate_run(const Scenario& s) {
         "stop.steps",
         s.source.string());
   if (s.stop.displacement > 0.0 && control && control->velocity == 0.0 && s.stop.time <= 0.0 &&
-      s.stop.steps <= 0)
+      s.stop.steps <= 0 && s.displacement_gauge.empty())
     fail(
         "{}: stop.displacement can never trigger: the control plate '{}' does not move "
         "(velocity 0)",
@@ -196,24 +199,12 @@ RunSummary run_scenario(const Scenario& sc, const fs::path& out,
 
 namespace {
 
-// The test's load and displacement: a control plate's, or a pulled bar's.
-struct Control {
-  const Plate* plate = nullptr;
-  const PulledBar* bar = nullptr;
-  Control(const Simulation& sim, const Scenario& sc)
-      : plate(sim.find_plate(sc.control_plate)), bar(sim.find_pulled_bar(sc.control_bar)) {}
-  Real load() const { return plate ? plate->load() : bar ? bar->load() : 0.0; }
-  Real displacement() const { return plate ? plate->displacement : bar ? bar->displacement : 0.0; }
-  Real speed() const { return plate ? std::abs(plate->velocity) : bar ? bar->speed : 0.0; }
-  Real ramp() const { return plate ? plate->ramp_time : bar ? bar->ramp_time : 0.0; }
-};
-
 // Snapshots expected to take more than this (bytes) are announced at the set-up.
 constexpr double kLargeOutputBytes = 1e9;
 
 // How many steps the run will take, where a rule tells: for the history and snapshot spacing and
 // the progress line.
-Real expected_steps(const Scenario& sc, const Simulation& sim, const Control& control) {
+Real expected_steps(const Scenario& sc, const Simulation& sim, const TestMeasures& control) {
   Real expected = std::numeric_limits<Real>::infinity();
   if (sc.stop.steps > 0) expected = std::min(expected, static_cast<Real>(sc.stop.steps));
   if (sc.stop.time > 0.0) expected = std::min(expected, sc.stop.time / sim.time_step());
@@ -267,7 +258,7 @@ class RunLoop {
   const RunOptions& opt_;
   RunSession& session_;
   Simulation& sim_;
-  const Control control_;
+  const TestMeasures control_;
   io::History history_;
   io::SnapshotWriter snapshots_;
   io::CrackRecord cracks_;
@@ -290,7 +281,7 @@ RunLoop::RunLoop(const Scenario& sc, const fs::path& out, const RunOptions& opt,
       session_(session),
       sim_(sim),
       control_(sim, sc),
-      history_(sim, sc.control_plate.empty() ? sc.control_bar : sc.control_plate),
+      history_(sim, sc),
       snapshots_(out, sc.output.binary_vtu, sc.output.write_facets),
       cracks_(sim),
       parts_{&sim, &history_, &snapshots_, &cracks_, &loop_} {
@@ -532,7 +523,8 @@ nlohmann::ordered_json RunLoop::summary_json(const RunSummary& r, double wall, d
                                  {"largest_factor", ms.largest_factor},
                                  {"added_mass_fraction", ms.added_fraction()},
                                  {"unscaled_stable_time_step_s", ms.unscaled_step}};
-  j["control"] = sc_.control_plate.empty() ? sc_.control_bar : sc_.control_plate;
+  j["control"] = sc_.control_name();
+  j["displacement_column"] = history_.displacement_column();
   j["peak_load_N"] = r.peak_load;
   j["displacement_at_peak_m"] = r.displacement_at_peak;
   j["kinetic_over_strain_at_peak"] = r.kinetic_over_strain_at_peak;
@@ -554,7 +546,7 @@ nlohmann::ordered_json RunLoop::summary_json(const RunSummary& r, double wall, d
   RunOutcome outcome;
   set_expectation(sc_, outcome);
   outcome.peak_load = r.peak_load;
-  outcome.control_travel = std::abs(control_.displacement());
+  outcome.control_travel = std::abs(control_.control_displacement());
   outcome.balance_error = e.balance_error();
   j["warnings"] = suspicious_run_warnings(outcome);
   for (const auto& w : j["warnings"])

@@ -178,8 +178,8 @@ std::string History::join_columns(const std::vector<std::string>& columns) {
   return s;
 }
 
-History::History(const Simulation& sim, std::string control)
-    : control_(std::move(control)), gauges_(sim.specimen()) {
+History::History(const Simulation& sim, const Scenario& sc)
+    : measures_(sim, sc), gauges_(sim.specimen()) {
   columns_ = {"step", "time_s"};
   for (const auto& p : sim.plates()) {
     columns_.push_back(p.name + "_displacement_m");
@@ -202,6 +202,14 @@ History::History(const Simulation& sim, std::string control)
       columns_.emplace_back(c);
   adaptive_rate_ = sim.adaptive_loading_rate();
   if (adaptive_rate_) columns_.emplace_back("loading_rate_factor");
+  for (const Gauge& g : measures_.gauges()) columns_.push_back("gauge_" + g.name() + "_m");
+  if (measures_.several_plates()) columns_.emplace_back("control_displacement_m");
+  const auto plates = sc.load_plates();
+  displacement_column_ = !sc.displacement_gauge.empty() ? "gauge_" + sc.displacement_gauge + "_m"
+                         : plates.size() > 1           ? "control_displacement_m"
+                         : plates.size() == 1          ? plates[0] + "_displacement_m"
+                         : sc.control_bar.empty()      ? ""
+                                                       : sc.control_bar + "_pull_displacement_m";
 }
 
 void History::record(const Simulation& sim) {
@@ -218,19 +226,16 @@ void History::record(const Simulation& sim) {
   const Vec3 interior = gauges_.interior(sim.bodies());
   row.insert(row.end(),
              {strain.x(), strain.y(), strain.z(), interior.x(), interior.y(), interior.z()});
-  const Plate* control = sim.find_plate(control_);
-  const PulledBar* pulled = sim.find_pulled_bar(control_);
   const Energy& e = sim.energy();
-  row.insert(row.end(), {control  ? control->load()
-                         : pulled ? pulled->load()
-                                  : 0.0,
-                         e.kinetic, e.strain, e.damage, e.friction, e.damping, e.external_work,
+  row.insert(row.end(), {measures_.load(), e.kinetic, e.strain, e.damage, e.friction, e.damping, e.external_work,
                          e.balance_error(), static_cast<double>(sim.damaged_points()),
                          static_cast<double>(sim.broken_points())});
   if (bars_)
     row.insert(row.end(), {sim.max_axial_force(), static_cast<double>(sim.yielded_nodes()),
                            static_cast<double>(sim.broken_interface_points()), e.plastic});
   if (adaptive_rate_) row.push_back(sim.loading_rate_factor());
+  for (const Gauge& g : measures_.gauges()) row.push_back(g.value(sim));
+  if (measures_.several_plates()) row.push_back(measures_.control_displacement());
   rows_.push_back(std::move(row));
 }
 

@@ -8,6 +8,7 @@
 #include "rcdem/io/strain_gauges.hpp"
 #include "rcdem/io/vtu_writer.hpp"
 #include "rcdem/solver/simulation.hpp"
+#include "rcdem/solver/test_measures.hpp"
 
 namespace rcdem::io {
 
@@ -38,7 +39,12 @@ class SnapshotWriter {
 
 class History {
  public:
-  explicit History(const Simulation& sim, std::string control_plate);
+  // The columns: each plate's and pulled bar's, the strain gauges', the load and the ledger's,
+  // the bars' where there are bars, then the scenario's gauges (gauge_NAME_m) and, for a load over
+  // several plates, their mean displacement (control_displacement_m).
+  History(const Simulation& sim, const Scenario& sc);
+  // The column holding the test's displacement (summary.json's displacement_column).
+  const std::string& displacement_column() const { return displacement_column_; }
   void record(const Simulation& sim);
   void write(const std::filesystem::path& path) const;
   std::size_t rows() const { return rows_.size(); }
@@ -55,7 +61,8 @@ class History {
 
  private:
   static std::string join_columns(const std::vector<std::string>& columns);
-  std::string control_;
+  TestMeasures measures_;
+  std::string displacement_column_;
   StrainGauges gauges_;
   bool bars_ = false;
   bool adaptive_rate_ = false;  // a loading_rate_factor column

@@ -8,15 +8,17 @@
 namespace rcdem {
 
 void set_expectation(const Scenario& sc, RunOutcome& o) {
+  const std::vector<std::string> load_plates = sc.load_plates();
   for (const auto& p : sc.plates) {
-    if (p.name != sc.control_plate) continue;
+    if (std::find(load_plates.begin(), load_plates.end(), p.name) == load_plates.end()) continue;
     const Vec3& size = sc.specimen.size;
     const auto [u, v] = face_axes(p.axis);
     const std::vector<Real> r = p.rectangle(size);  // its part on the face:
     const Real width_u = std::min(r[1], size[u]) - std::max(r[0], 0.0);
     const Real width_v = std::min(r[3], size[v]) - std::max(r[2], 0.0);
-    o.expected_load = sc.contact.sigma_nt * width_u * width_v;
-    o.loaded_travel = 10.0 * sc.contact.sigma_nt / sc.contact.E_bar * size[p.axis];
+    o.expected_load += sc.contact.sigma_nt * width_u * width_v;
+    o.loaded_travel =
+        std::max(o.loaded_travel, 10.0 * sc.contact.sigma_nt / sc.contact.E_bar * size[p.axis]);
   }
   for (const auto& b : sc.bars) {
     if (b.name != sc.control_bar) continue;
