@@ -129,8 +129,9 @@ struct BarSettings {
 //                 of the `relative_to` plates (a deflection relative to the supports);
 //   opening:      the material at `to` against the material at `point`, along `axis` or along the
 //                 line from `point` to `to` (a crack-mouth opening).
-// The material at a point: the concrete particles whose centres lie within `radius` of it at t = 0
-// (the nearest one when 0), each carrying the point rigidly; their mean.
+// The material at a point: the affine displacement field fitted to the concrete particles whose
+// centres lie within `radius` of it at t = 0, evaluated at the point (solver/test_measures.hpp);
+// with radius 0 the nearest particle, carrying the point rigidly.
 enum class GaugeKind { Displacement, Opening };
 struct GaugeSettings {
   static constexpr int kAuto = -1;   // displacement: z; opening: along the line

@@ -394,8 +394,9 @@ void declare_gauges(Declarations& s) {
                 "subtracted (the supports, for a deflection)."),
           Need::Default, &G::relative_to);
   s.gauge(real("gauges.*.radius", Range{0.0, 10.0}, "m",
-               "The material at a point: the concrete particles whose centres lie within this "
-               "distance of it (0: the nearest particle), their mean motion."),
+               "The material at a point: the uniform-strain field fitted to the concrete particles "
+               "whose centres lie within this distance of it (at least 4, spanning 3 "
+               "directions), at the point; 0: the nearest particle, carrying the point rigidly."),
           Need::Default, &G::radius);
 }
 

@@ -4,13 +4,17 @@
 #include <cmath>
 #include <limits>
 
+#include <Eigen/Eigenvalues>
+
+#include "rcdem/config/scenario_checks.hpp"
 #include "rcdem/core/error.hpp"
 
 namespace rcdem {
 
-Gauge::MaterialPoint Gauge::material_point(const Vec3& p, Real radius, const Simulation& sim) {
+Gauge::MaterialPoint Gauge::material_point(const Vec3& p, Real radius, const Simulation& sim,
+                                           const std::string& gauge) {
   const Bodies& b = sim.bodies();
-  MaterialPoint m{p, {}};
+  MaterialPoint m{p, {}, {}};
   Index nearest = 0;
   Real best = std::numeric_limits<Real>::infinity();
   for (Index i = 0; i < sim.concrete_count(); ++i) {
@@ -21,22 +25,49 @@ Gauge::MaterialPoint Gauge::material_point(const Vec3& p, Real radius, const Sim
     }
     if (radius > 0.0 && d <= radius) m.particles.push_back(i);
   }
-  if (m.particles.empty()) m.particles.push_back(nearest);
+  if (radius <= 0.0) {
+    m.particles.push_back(nearest);
+    return m;
+  }
+  // u(p) = mean u + G (p - c), G the least-squares gradient over the offsets d_i from the
+  // centroid c: the weights 1/n + d_i^T M^-1 (p - c), M = sum d_i d_i^T.
+  const auto n = static_cast<Real>(m.particles.size());
+  Vec3 c = Vec3::Zero();
+  for (const Index i : m.particles) c += b.position0[i];
+  c /= n;
+  Eigen::Matrix3d moment = Eigen::Matrix3d::Zero();
+  for (const Index i : m.particles) moment += (b.position0[i] - c) * (b.position0[i] - c).transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(moment);
+  // The particles must span the three directions: the smallest principal spread at least a
+  // hundredth of the largest.
+  if (m.particles.size() < 4 || !(eig.eigenvalues()(0) > 1e-4 * eig.eigenvalues()(2)))
+    fail(
+        "{}: the {} particle(s) within radius {} m of ({}, {}, {}) do not span three "
+        "directions; expected a larger radius (about two particle diameters) or radius = 0",
+        gauge, m.particles.size(), radius, p.x(), p.y(), p.z());
+  const Vec3 lever = moment.inverse() * (p - c);
+  for (const Index i : m.particles) m.weight.push_back(1.0 / n + (b.position0[i] - c).dot(lever));
   return m;
 }
 
 Vec3 Gauge::displacement(const MaterialPoint& m, const Bodies& b) {
-  Vec3 sum = Vec3::Zero();
-  for (const Index i : m.particles)
-    sum += b.position[i] + b.orientation[i] * (m.point - b.position0[i]) - m.point;
-  return sum / static_cast<Real>(m.particles.size());
+  if (m.weight.empty()) {
+    const Index i = m.particles[0];
+    return b.position[i] + b.orientation[i] * (m.point - b.position0[i]) - m.point;
+  }
+  Vec3 u = Vec3::Zero();
+  for (std::size_t k = 0; k < m.particles.size(); ++k) {
+    const Index i = m.particles[k];
+    u += m.weight[k] * (b.position[i] - b.position0[i]);
+  }
+  return u;
 }
 
-Gauge::Gauge(const GaugeSettings& s, const Simulation& sim)
+Gauge::Gauge(const GaugeSettings& s, const Simulation& sim, const std::string& where)
     : name_(s.name),
       kind_(s.kind),
-      a_(material_point(s.point, s.radius, sim)),
-      b_(s.kind == GaugeKind::Opening ? material_point(s.to, s.radius, sim) : a_) {
+      a_(material_point(s.point, s.radius, sim, where)),
+      b_(s.kind == GaugeKind::Opening ? material_point(s.to, s.radius, sim, where) : a_) {
   const int d = s.direction();
   direction_ = d == GaugeSettings::kAlong ? Vec3((s.to - s.point).normalized())
                                           : Vec3(Vec3::Unit(d));
@@ -59,7 +90,9 @@ TestMeasures::TestMeasures(const Simulation& sim, const Scenario& sc)
     if (const Plate* p = sim.find_plate(name)) plates_.push_back(p);
   for (const auto& g : sc.gauges) {
     if (g.name == sc.displacement_gauge) displacement_gauge_ = static_cast<int>(gauges_.size());
-    gauges_.emplace_back(g, sim);
+    gauges_.emplace_back(g, sim,
+                         config::key_location(sc, "gauges." + g.name + ".radius") +
+                             ": key 'gauges." + g.name + ".radius'");
   }
 }
 

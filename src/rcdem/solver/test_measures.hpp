@@ -14,18 +14,24 @@ namespace rcdem {
 // One gauge, its material points resolved to particles at t = 0.
 class Gauge {
  public:
-  Gauge(const GaugeSettings& settings, const Simulation& sim);
+  // `where`: the key's location for errors ("FILE:LINE: key 'gauges.NAME.radius'").
+  Gauge(const GaugeSettings& settings, const Simulation& sim, const std::string& where);
   const std::string& name() const { return name_; }
   // Its value now (m).
   Real value(const Simulation& sim) const;
 
  private:
-  // The material's displacement at a point: each particle near it carries the point rigidly.
+  // The material's displacement at a point (docs/model.md 12): with a radius, the affine field
+  // fitted by least squares to the displacements of the particles' centres within it, at the
+  // point (exact for any uniform strain and rigid motion), as weights on those displacements;
+  // without, the nearest particle carrying the point rigidly.
   struct MaterialPoint {
     Vec3 point;
     std::vector<Index> particles;
+    std::vector<Real> weight;  // empty: the one particle carries the point
   };
-  static MaterialPoint material_point(const Vec3& p, Real radius, const Simulation& sim);
+  static MaterialPoint material_point(const Vec3& p, Real radius, const Simulation& sim,
+                                      const std::string& gauge);
   static Vec3 displacement(const MaterialPoint& m, const Bodies& b);
 
   std::string name_;
