@@ -326,6 +326,51 @@ void check_solver(const Reader& r, const Scenario& s) {
          r.at("solver.time_step"), s.solver.time_step, kMinimumTimeStep);
 }
 
+// The segments of the program of `owner` ("plates.top"), in the file's order, each checked for
+// the keys its kind needs; cycles stay one segment (the solver expands them).
+std::vector<SegmentSettings> convert_program(const Reader& r, const std::string& owner) {
+  std::vector<SegmentSettings> program;
+  const std::string pattern = owner.substr(0, owner.find('.')) + ".*.program.*";
+  const auto it = r.instances.find(pattern);
+  if (it == r.instances.end()) return program;
+  for (const auto& inst : it->second) {
+    if (inst.rfind(owner + ".program.", 0) != 0) continue;
+    SegmentSettings g;
+    g.name = inst.substr(inst.rfind('.') + 1);
+    set_bound(r, config::scenario_bindings().segment, inst, g);
+    const auto need = [&](bool ok, const char* key, const char* what) {
+      if (!ok)
+        fail("{}: section [{}]: a '{}' segment needs {}: key '{}.{}'", r.at(inst), inst,
+             r.string(inst + ".kind"), what, inst, key);
+    };
+    switch (g.kind) {
+      case SegmentKind::Velocity:
+        need(g.velocity != 0.0 || g.duration > 0.0, "velocity", "a velocity or a duration");
+        break;
+      case SegmentKind::Hold:
+        need(g.duration > 0.0, "duration", "a duration > 0");
+        break;
+      case SegmentKind::Displacement:
+      case SegmentKind::Load:
+        need(g.speed > 0.0, "speed", "a speed > 0");
+        need(r.lines.count(inst + ".target") > 0, "target", "a target");
+        break;
+      case SegmentKind::Force:
+        need(g.speed > 0.0, "speed", "a largest speed > 0");
+        need(g.response_time > 0.0, "response_time", "a response time > 0");
+        need(g.duration > 0.0, "duration", "a duration > 0");
+        need(r.lines.count(inst + ".target") > 0, "target", "a target load");
+        break;
+      case SegmentKind::Cycles:
+        need(g.speed > 0.0, "speed", "a speed > 0");
+        need(g.amplitude != 0.0, "amplitude", "an amplitude other than 0");
+        break;
+    }
+    program.push_back(g);
+  }
+  return program;
+}
+
 // One [plates.NAME] section; `s` gives the specimen's size its extent is checked against.
 PlateSettings convert_plate(const Reader& r, const Scenario& s, const std::string& inst) {
   PlateSettings p;
@@ -334,6 +379,11 @@ PlateSettings convert_plate(const Reader& r, const Scenario& s, const std::strin
   const std::string face = r.string(inst + ".face");
   p.axis = face[0] - 'x';
   p.side = face[1] == '-' ? -1 : 1;
+  p.program = convert_program(r, inst);
+  if (!p.program.empty() && p.velocity != 0.0)
+    fail("{}: key '{}.velocity': a plate with a program moves by its program; expected no "
+         "velocity",
+         r.at(inst + ".velocity"), inst);
   if (!p.extent.empty() && (p.extent[0] >= p.extent[1] || p.extent[2] >= p.extent[3]))
     fail(
         "{}: key '{}.extent': expected [u_min, u_max, v_min, v_max] with u_min < u_max and "
@@ -357,6 +407,11 @@ BarSettings convert_bar(const Reader& r, const Scenario& s, const std::string& i
   BarSettings b;
   b.name = inst.substr(inst.find('.') + 1);
   set_bound(r, config::scenario_bindings().bar, inst, b);
+  b.program = convert_program(r, inst);
+  if (!b.program.empty() && b.pull_velocity != 0.0)
+    fail("{}: key '{}.pull_velocity': a bar with a program is pulled by its program; expected "
+         "no pull_velocity",
+         r.at(inst + ".pull_velocity"), inst);
   if (b.interface == InterfaceLaw::EL && b.interface_softening != BarSettings{}.interface_softening)
     fail(
         "{}: key '{}.interface_softening': expected only with a nonlinear interface (NL-A, "
@@ -459,9 +514,10 @@ void check_control(const Reader& r, const Scenario& s) {
   if (!s.control_bar.empty()) {
     const auto it = std::find_if(s.bars.begin(), s.bars.end(),
                                  [&](const BarSettings& b) { return b.name == s.control_bar; });
-    if (it == s.bars.end() || it->pull_velocity <= 0.0)
+    if (it == s.bars.end() || !it->pulled())
       fail(
-          "{}: key 'loading.control_bar': expected the name of a bar with pull_velocity > 0, "
+          "{}: key 'loading.control_bar': expected the name of a bar with pull_velocity > 0 or "
+          "a program, "
           "got '{}'",
           r.at("loading.control_bar"), s.control_bar);
     if (!s.load_plates().empty())

@@ -88,6 +88,24 @@ struct LoadingRateSettings {
 // The two axes spanning a plate on a face normal to `axis`, in x, y, z order.
 inline std::pair<int, int> face_axes(int axis) { return {axis == 0 ? 1 : 0, axis == 2 ? 1 : 2}; }
 
+// One segment of a loading program (issue 41, item 2; docs/model.md 13), a [plates.P.program.NAME]
+// or [bars.B.program.NAME] section, run in the file's order. Velocities and displacements are
+// along the plate's axis (a pulled bar: along its pull), loads in the plate's or bar's load sign.
+enum class SegmentKind { Velocity, Displacement, Load, Hold, Force, Cycles };
+struct SegmentSettings {
+  std::string name;
+  SegmentKind kind = SegmentKind::Velocity;
+  Real velocity = 0.0;   // velocity: m/s
+  Real duration = 0.0;   // velocity (0: until the run stops), hold, force: s
+  Real target = 0.0;     // displacement: m; load, force: N
+  Real speed = 0.0;      // displacement, load, cycles: m/s; force: the servo's largest speed
+  std::int64_t count = 1;                      // cycles
+  Real amplitude = 0.0, amplitude_step = 0.0;  // cycles: the first peak displacement, its growth
+  Real unload_to = 0.0;                        // cycles: the load each cycle unloads to, N
+  Real response_time = 0.0;                    // force: the servo's time constant, s
+  Real stiffness = 0.0;  // force: N/m the servo assumes; 0: the secant at the segment's start
+};
+
 struct PlateSettings {
   std::string name;
   int axis = 2;              // 0, 1, 2 for x, y, z
@@ -97,6 +115,7 @@ struct PlateSettings {
   Real ramp_time = 0.0;
   bool glued = false;
   Real friction = 0.0;
+  std::vector<SegmentSettings> program;  // empty: `velocity` after the ramp
   // [u_min, u_max, v_min, v_max] in face_axes(axis): the extent, or the whole face of a specimen
   // of `size` (its origin at a corner).
   std::vector<Real> rectangle(const Vec3& size) const {
@@ -121,6 +140,8 @@ struct BarSettings {
   Real sphere_spacing = 0.0;            // 0 = D / 2
   Real pull_velocity = 0.0;             // pull-out of the first cylinder along end -> start
   Real pull_ramp_time = 0.0;
+  std::vector<SegmentSettings> program;  // a pull-out program instead of pull_velocity
+  bool pulled() const { return pull_velocity > 0.0 || !program.empty(); }
   Real spacing() const { return sphere_spacing > 0.0 ? sphere_spacing : 0.5 * diameter; }
 };
 

@@ -24,6 +24,7 @@ struct ScenarioBindings {
   std::vector<BoundKey<PlateSettings>> plate;  // plates.*.KEY, by KEY
   std::vector<BoundKey<BarSettings>> bar;      // bars.*.KEY, by KEY
   std::vector<BoundKey<GaugeSettings>> gauge;  // gauges.*.KEY, by KEY
+  std::vector<BoundKey<SegmentSettings>> segment;  // {plates,bars}.*.program.*.KEY, by KEY
 };
 
 const ScenarioBindings& scenario_bindings();

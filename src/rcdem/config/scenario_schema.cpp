@@ -115,6 +115,14 @@ class Declarations {
     bind(std::move(d), need, b_.bar, path...);
   }
   template <class... Path>
+  void segment(KeyDecl d, Need need, Path... path) {
+    bind(std::move(d), need, b_.segment, path...);
+  }
+  template <class M, class... Path>
+  void segment(KeyDecl d, std::vector<std::pair<std::string, M>> names, Path... path) {
+    bind_names(std::move(d), std::move(names), b_.segment, path...);
+  }
+  template <class... Path>
   void gauge(KeyDecl d, Need need, Path... path) {
     bind(std::move(d), need, b_.gauge, path...);
   }
@@ -361,6 +369,60 @@ void declare_plates(Declarations& s) {
           Need::Default, &P::friction);
 }
 
+// A loading program's segments, for a plate (`owner` "plates") or a pulled bar ("bars").
+void declare_program(Declarations& s, const std::string& owner) {
+  using G = SegmentSettings;
+  const std::string p = owner + ".*.program";
+  s.section(p, "A loading program: its segments, one [" + owner +
+                   ".NAME.program.SEGMENT] table each, run in the file's order (docs/model.md 13); "
+                   "instead of a constant velocity.");
+  s.section(p + ".*", "One segment of a loading program.");
+  s.segment(choice(p + ".*.kind", {},
+                   "'velocity' (for a duration, or to the end), 'displacement' (to a target at a "
+                   "speed), 'load' (to a target load at a speed, either way), 'hold' (still for "
+                   "a duration), 'force' (a servo holds the load at a target for a duration), "
+                   "'cycles' (count times: to a displacement amplitude growing by "
+                   "amplitude_step, then back to the load unload_to)."),
+            std::vector<std::pair<std::string, SegmentKind>>{
+                {"velocity", SegmentKind::Velocity}, {"displacement", SegmentKind::Displacement},
+                {"load", SegmentKind::Load},         {"hold", SegmentKind::Hold},
+                {"force", SegmentKind::Force},       {"cycles", SegmentKind::Cycles}},
+            &G::kind);
+  s.segment(real(p + ".*.velocity", Range{-1e3, 1e3}, "m/s",
+                 "velocity: the velocity (plates: along +axis; bars: along the pull)."),
+            Need::Default, &G::velocity);
+  s.segment(real(p + ".*.duration", Range{0.0, 1e3}, "s",
+                 "velocity, hold, force: how long (velocity: 0 = until the run stops)."),
+            Need::Default, &G::duration);
+  s.segment(real(p + ".*.target", Range{-1e9, 1e9}, "m or N",
+                 "displacement: the displacement to reach (m, since t = 0); load, force: the "
+                 "load (N)."),
+            Need::Default, &G::target);
+  s.segment(real(p + ".*.speed", Range{0.0, 1e3}, "m/s",
+                 "displacement, load, cycles: the speed of the move; force: the servo's "
+                 "largest."),
+            Need::Default, &G::speed);
+  s.segment(typed(p + ".*.count", KeyType::Integer, Range{1.0, 1e4}, "cycles: how many."),
+            Need::Default, &G::count);
+  s.segment(real(p + ".*.amplitude", Range{-100.0, 100.0}, "m",
+                 "cycles: the first cycle's peak displacement (since t = 0)."),
+            Need::Default, &G::amplitude);
+  s.segment(real(p + ".*.amplitude_step", Range{-100.0, 100.0}, "m",
+                 "cycles: each cycle's peak beyond the one before."),
+            Need::Default, &G::amplitude_step);
+  s.segment(real(p + ".*.unload_to", Range{-1e9, 1e9}, "N",
+                 "cycles: the load each cycle unloads to before the next."),
+            Need::Default, &G::unload_to);
+  s.segment(real(p + ".*.response_time", Range{0.0, 1e3}, "s",
+                 "force: the servo's time constant: velocity = (target - load) / (stiffness x "
+                 "response_time), at most speed."),
+            Need::Default, &G::response_time);
+  s.segment(real(p + ".*.stiffness", Range{0.0, 1e15}, "N/m",
+                 "force: the specimen's stiffness the servo assumes; 0: the secant load / "
+                 "displacement at the segment's start."),
+            Need::Default, &G::stiffness);
+}
+
 // Gauges: measured displacements, each a history column.
 void declare_gauges(Declarations& s) {
   using G = GaugeSettings;
@@ -546,9 +608,11 @@ Built build() {
   declare_contact(s);
   declare_solver(s);
   declare_plates(s);
+  declare_program(s, "plates");
   declare_loading_and_stop(s);
   declare_gauges(s);
   declare_bars(s);
+  declare_program(s, "bars");
   declare_output(s);
   return b;
 }

@@ -140,7 +140,8 @@ void Schema::print_template(std::ostream& out) const {
     const bool named = s.path.find('*') != std::string::npos;
     const std::string lead = named ? "# " : "";
     std::string header = s.path;
-    if (named) header.replace(header.find('*'), 1, "NAME");
+    for (auto star = header.find('*'); star != std::string::npos; star = header.find('*'))
+      header.replace(star, 1, "NAME");
     out << "\n# " << s.doc << "\n" << lead << "[" << header << "]";
     if (named) out << "   # one such section per item; NAME is yours to choose";
     out << "\n";

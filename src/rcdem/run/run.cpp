@@ -112,8 +112,8 @@ void validate_run(const Scenario& s) {
           static_cast<char>('x' + p.axis), p.side < 0 ? '-' : '+', p.side < 0 ? '+' : '-',
           static_cast<char>('x' + p.axis));
   bool moving = false;
-  for (const auto& p : s.plates) moving |= p.velocity != 0.0;
-  for (const auto& b : s.bars) moving |= b.pull_velocity > 0.0;
+  for (const auto& p : s.plates) moving |= p.velocity != 0.0 || !p.program.empty();
+  for (const auto& b : s.bars) moving |= b.pulled();
   if (!moving && s.stop.time <= 0.0 && s.stop.steps <= 0)
     fail(
         "{}: no plate moves (every velocity is 0), so stop.displacement, stop.load_drop and "

@@ -9,17 +9,6 @@
 
 namespace rcdem {
 
-Real Plate::velocity_at(Real t) const {
-  if (ramp_time <= 0.0 || t >= ramp_time) return velocity;
-  // A smooth (cosine) ramp: no jump in acceleration, so no shock wave at the start.
-  return velocity * 0.5 * (1.0 - std::cos(kPi * t / ramp_time));
-}
-
-Real Plate::load() const {
-  const Real f = force[axis];
-  return velocity > 0.0 ? -f : velocity < 0.0 ? f : -side * f;
-}
-
 std::vector<Plate> make_plates(const std::vector<PlateSettings>& settings,
                                const SpecimenGeometry& g) {
   std::vector<Plate> plates;
@@ -45,6 +34,13 @@ std::vector<Plate> make_plates(const std::vector<PlateSettings>& settings,
     }
     p.velocity = s.velocity;
     p.ramp_time = s.ramp_time;
+    if (s.program.empty()) {
+      p.motion = LoadingProgram(s.velocity, s.ramp_time);
+      p.direction = s.velocity > 0.0 ? 1.0 : s.velocity < 0.0 ? -1.0 : s.side;
+    } else {
+      p.direction = LoadingProgram::first_direction(s.program, -s.side);
+      p.motion = LoadingProgram(s.program, s.ramp_time, p.direction);
+    }
     p.glued = s.glued;
     p.friction = s.friction;
     plates.push_back(p);
@@ -217,7 +213,9 @@ void PlateSet::drive(const Bodies&, const StepClock& clock, Energy& ledger) {
     ledger.external_work += work;
     force_prev[p] = f_on_specimen;
     displacement_prev[p] = plate.displacement;
-    plate.displacement += clock.rate * plate.velocity_at(clock.mid()) * clock.dt;
+    plate.displacement +=
+        clock.rate * plate.motion.velocity(clock, plate.displacement, plate.load(), plate.name) *
+        clock.dt;
   }
 }
 
@@ -237,6 +235,11 @@ void PlateSet::visit_springs(SpringVisitor& v, const Bodies& bodies) const {
     const Vec3 arm = contacts.point0[j] - bodies.position0[i];
     v.spring(-1, i, arm, arm, plates[contacts.plate[j]].normal, k.kn, k.ks);
   }
+}
+
+bool PlateSet::has_program() const {
+  return std::any_of(plates.begin(), plates.end(),
+                     [](const Plate& p) { return p.motion.explicit_program(); });
 }
 
 const Plate* PlateSet::find(const std::string& name) const {

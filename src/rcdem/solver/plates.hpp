@@ -14,6 +14,7 @@
 #include "rcdem/contact/laws/local_point_state.hpp"
 #include "rcdem/core/archive.hpp"
 #include "rcdem/core/types.hpp"
+#include "rcdem/solver/loading_program.hpp"
 #include "rcdem/solver/step_part.hpp"
 #include "rcdem/state/bodies.hpp"
 #include "rcdem/state/contact_network.hpp"
@@ -27,8 +28,13 @@ struct Plate {
   Vec3 normal;                      // unit, into the specimen
   Real face_coordinate = 0.0;       // the face's coordinate along the axis at t = 0
   Real u_min, u_max, v_min, v_max;  // rectangle in the other two axes (ascending order)
-  Real velocity = 0.0;              // along +axis
+  Real velocity = 0.0;              // along +axis (a program's plate: 0)
   Real ramp_time = 0.0;
+  // How it moves: `velocity` after the ramp, or its program (solver/loading_program.hpp).
+  LoadingProgram motion{0.0, 0.0};
+  // The way along the axis its load grows (Plate::load): its velocity's sign, its program's first
+  // move's (into the specimen when that is a load), or `side` for a plate that stays still.
+  Real direction = 1.0;
   bool glued = false;
   Real friction = 0.0;
 
@@ -37,9 +43,9 @@ struct Plate {
   Real work = 0.0;            // done by the plate on the specimen
   Index contacts_active = 0;
 
-  Real velocity_at(Real t) const;
-  // The reaction along the axis, signed so that it is positive when it resists the plate's motion.
-  Real load() const;
+  // The reaction along the axis, signed so that it is positive when it resists the plate's
+  // motion in `direction`.
+  Real load() const { return -direction * force[axis]; }
 };
 
 struct PlateContacts {
@@ -75,6 +81,7 @@ struct PlateSet final : StepPart {
   PlateSet(const std::vector<PlateSettings>& settings, const SpecimenGeometry& geometry,
            const BoundaryFaces& faces, const Bodies& bodies, const ContactParameters& params);
   const Plate* find(const std::string& name) const;
+  bool has_program() const;
 
   Index task_count() const override;
   void run_task(Index task, const StepContext& ctx) override;
@@ -92,6 +99,12 @@ struct PlateSet final : StepPart {
              column(s.plates, &Plate::force), column(s.plates, &Plate::work),
              column(s.plates, &Plate::contacts_active), column(s.force_prev),
              column(s.displacement_prev));
+    // Only where a plate has a program, so that the checkpoints of the runs without one keep
+    // their format.
+    if (s.has_program())
+      ar.table("plate_programs", s.plates.size(), [&](std::size_t i) -> auto& {
+        return s.plates[i].motion.state();
+      });
     auto& pc = s.contacts;
     ar.table("plate_contacts", pc.state.size(), column(pc.state), column(pc.force),
              column(pc.torque), column(pc.strain_energy), column(pc.dissipated_friction),

@@ -6,22 +6,19 @@
 
 namespace rcdem {
 
-Real PulledBar::velocity_at(Real t) const {
-  if (ramp_time <= 0.0 || t >= ramp_time) return speed;
-  return speed * 0.5 * (1.0 - std::cos(kPi * t / ramp_time));
-}
-
 PulledBars::PulledBars(const Scenario& sc, const Specimen& specimen, PrescribedMotion& motion) {
   Index body = specimen.concrete();
   for (std::size_t k = 0; k < specimen.bars.size(); ++k) {
     const BarSettings& bs = sc.bars[k];
-    if (bs.pull_velocity > 0.0) {
+    if (bs.pulled()) {
       PulledBar pb;
       pb.name = bs.name;
       pb.body = body;
       pb.direction = (bs.start - bs.end).normalized();
       pb.speed = bs.pull_velocity;
       pb.ramp_time = bs.pull_ramp_time;
+      pb.motion = bs.program.empty() ? LoadingProgram(bs.pull_velocity, bs.pull_ramp_time)
+                                     : LoadingProgram(bs.program, bs.pull_ramp_time, 1.0);
       slot.push_back(motion.claim(body));
       bars.push_back(pb);
     }
@@ -32,7 +29,10 @@ PulledBars::PulledBars(const Scenario& sc, const Specimen& specimen, PrescribedM
 
 void PulledBars::prescribe(PrescribedMotion& motion, const StepClock& clock) {
   for (std::size_t k = 0; k < bars.size(); ++k)
-    motion.velocity[slot[k]] = clock.rate * bars[k].velocity_at(clock.mid()) * bars[k].direction;
+    motion.velocity[slot[k]] =
+        clock.rate *
+        bars[k].motion.velocity(clock, bars[k].displacement, bars[k].load(), bars[k].name) *
+        bars[k].direction;
 }
 
 void PulledBars::drive(const Bodies& bodies, const StepClock& clock, Energy& ledger) {

@@ -1,6 +1,7 @@
 #pragma once
 // Bars pulled out by their first cylinder (pull-out tests, bars.*.pull_velocity): the cylinder's
 // velocity is prescribed along the bar, its rotation held; the force it takes is the pull-out load.
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -8,6 +9,7 @@
 #include "rcdem/config/scenario.hpp"
 #include "rcdem/core/archive.hpp"
 #include "rcdem/core/types.hpp"
+#include "rcdem/solver/loading_program.hpp"
 #include "rcdem/solver/step_part.hpp"
 #include "rcdem/specimens/specimen.hpp"
 
@@ -18,11 +20,11 @@ struct PulledBar {
   Index body = 0;
   Vec3 direction = Vec3::Zero();  // unit, end -> start
   Real speed = 0.0, ramp_time = 0.0;
+  LoadingProgram motion{0.0, 0.0};  // pull_velocity after the ramp, or its program
   Real displacement = 0.0;    // along direction
   Vec3 force = Vec3::Zero();  // on the cylinder from the concrete and the rest of the bar
   Real work = 0.0;
   Real last_step = 0.0;
-  Real velocity_at(Real t) const;
   Real load() const { return -force.dot(direction); }
 };
 
@@ -46,6 +48,13 @@ struct PulledBars final : StepPart {
     ar.table("pulled_bars", s.bars.size(), column(s.bars, &PulledBar::displacement),
              column(s.bars, &PulledBar::force), column(s.bars, &PulledBar::work),
              column(s.bars, &PulledBar::last_step), column(s.force_prev));
+    // Only where a bar has a program (the runs without one keep their format).
+    const bool programs = std::any_of(s.bars.begin(), s.bars.end(), [](const PulledBar& b) {
+      return b.motion.explicit_program();
+    });
+    if (programs)
+      ar.table("pulled_bar_programs", s.bars.size(),
+               [&](std::size_t i) -> auto& { return s.bars[i].motion.state(); });
   }
 };
 
