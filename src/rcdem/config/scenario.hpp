@@ -103,6 +103,7 @@ struct SegmentSettings {
   Real amplitude = 0.0, amplitude_step = 0.0;  // cycles: the first peak displacement, its growth
   Real unload_to = 0.0;                        // cycles: the load each cycle unloads to, N
   Real response_time = 0.0;                    // force: the servo's time constant, s
+  Real tolerance = 0.01;  // force: the hold's duration counts from the load within this of target
   Real stiffness = 0.0;  // force: N/m the servo assumes; 0: the secant at the segment's start
 };
 

@@ -380,7 +380,8 @@ void declare_program(Declarations& s, const std::string& owner) {
   s.segment(choice(p + ".*.kind", {},
                    "'velocity' (for a duration, or to the end), 'displacement' (to a target at a "
                    "speed), 'load' (to a target load at a speed, either way), 'hold' (still for "
-                   "a duration), 'force' (a servo holds the load at a target for a duration), "
+                   "a duration), 'force' (a servo brings the load to a target and holds it there "
+                   "for a duration), "
                    "'cycles' (count times: to a displacement amplitude growing by "
                    "amplitude_step, then back to the load unload_to)."),
             std::vector<std::pair<std::string, SegmentKind>>{
@@ -417,6 +418,10 @@ void declare_program(Declarations& s, const std::string& owner) {
                  "force: the servo's time constant: velocity = (target - load) / (stiffness x "
                  "response_time), at most speed."),
             Need::Default, &G::response_time);
+  s.segment(real(p + ".*.tolerance", Range{0.0, 1.0, true, false}, "",
+                 "force: the hold's duration counts from the first step the load is within this "
+                 "fraction of the target."),
+            Need::Default, &G::tolerance);
   s.segment(real(p + ".*.stiffness", Range{0.0, 1e15}, "N/m",
                  "force: the specimen's stiffness the servo assumes; 0: the secant load / "
                  "displacement at the segment's start."),

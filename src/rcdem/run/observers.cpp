@@ -124,7 +124,28 @@ class PostPeakRule final : public StopRule {
   const PeakTracker& peak_;
 };
 
+// Every loading program has run its last segment (a rule wherever the scenario has a program).
+class ProgramEndRule final : public StopRule {
+ public:
+  const char* reason() const override { return "program_end"; }
+  bool triggered(const StepView& v) const override {
+    for (const Plate& p : v.sim.plates())
+      if (p.motion.explicit_program() && !p.motion.finished()) return false;
+    for (const PulledBar& b : v.sim.pulled_bars())
+      if (b.motion.explicit_program() && !b.motion.finished()) return false;
+    return true;
+  }
+};
+
 }  // namespace
+
+bool has_program(const Scenario& sc) {
+  for (const auto& p : sc.plates)
+    if (!p.program.empty()) return true;
+  for (const auto& b : sc.bars)
+    if (!b.program.empty()) return true;
+  return false;
+}
 
 std::vector<std::unique_ptr<StopRule>> stop_rules(const Scenario& sc, const PeakTracker& peak) {
   std::vector<std::unique_ptr<StopRule>> rules;
@@ -135,6 +156,7 @@ std::vector<std::unique_ptr<StopRule>> stop_rules(const Scenario& sc, const Peak
   if (s.load_drop > 0.0) rules.push_back(std::make_unique<LoadDropRule>(s.load_drop, peak));
   if (s.post_peak_displacement > 0.0)
     rules.push_back(std::make_unique<PostPeakRule>(s.post_peak_displacement, peak));
+  if (has_program(sc)) rules.push_back(std::make_unique<ProgramEndRule>());
   return rules;
 }
 

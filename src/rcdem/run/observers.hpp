@@ -115,6 +115,8 @@ class StopRule {
 
 // The scenario's active stop rules (SPEC 6, issue 5), in the order in which a later one that also
 // triggers names the stop: steps, time, displacement, load_drop, post_peak_displacement.
+// Whether a plate or bar of `sc` moves by a loading program (its end is then a stop rule).
+bool has_program(const Scenario& sc);
 std::vector<std::unique_ptr<StopRule>> stop_rules(const Scenario& sc, const PeakTracker& peak);
 
 }  // namespace rcdem

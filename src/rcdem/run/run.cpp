@@ -82,10 +82,10 @@ void validate_run(const Scenario& s) {
   if (s.plates.empty())
     fail("{}: a run needs plates: add at least one [plates.NAME] section with its face",
          s.source.string());
-  if (!s.stop.any())
+  if (!s.stop.any() && !has_program(s))
     fail(
         "{}: no stop rule: set stop.displacement, stop.load_drop, stop.post_peak_displacement, "
-        "stop.time or stop.steps",
+        "stop.time or stop.steps, or give a plate or pulled bar a program (its end stops the run)",
         s.source.string());
   const std::vector<std::string> load_plates = s.load_plates();
   const PlateSettings* control = load_plates.size() == 1 ? find(s, load_plates[0]) : nullptr;

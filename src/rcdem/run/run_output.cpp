@@ -203,6 +203,10 @@ History::History(const Simulation& sim, const Scenario& sc)
   adaptive_rate_ = sim.adaptive_loading_rate();
   if (adaptive_rate_) columns_.emplace_back("loading_rate_factor");
   for (const Gauge& g : measures_.gauges()) columns_.push_back("gauge_" + g.name() + "_m");
+  for (const auto& p : sim.plates())
+    if (p.motion.explicit_program()) columns_.push_back(p.name + "_program_segment");
+  for (const auto& b : sim.pulled_bars())
+    if (b.motion.explicit_program()) columns_.push_back(b.name + "_program_segment");
   if (measures_.several_plates()) columns_.emplace_back("control_displacement_m");
   const auto plates = sc.load_plates();
   displacement_column_ = !sc.displacement_gauge.empty() ? "gauge_" + sc.displacement_gauge + "_m"
@@ -235,6 +239,10 @@ void History::record(const Simulation& sim) {
                            static_cast<double>(sim.broken_interface_points()), e.plastic});
   if (adaptive_rate_) row.push_back(sim.loading_rate_factor());
   for (const Gauge& g : measures_.gauges()) row.push_back(g.value(sim));
+  for (const auto& p : sim.plates())
+    if (p.motion.explicit_program()) row.push_back(static_cast<double>(p.motion.segment()));
+  for (const auto& b : sim.pulled_bars())
+    if (b.motion.explicit_program()) row.push_back(static_cast<double>(b.motion.segment()));
   if (measures_.several_plates()) row.push_back(measures_.control_displacement());
   rows_.push_back(std::move(row));
 }

@@ -19,7 +19,7 @@ Real sign(Real x) { return x > 0.0 ? 1.0 : x < 0.0 ? -1.0 : 0.0; }
 }  // namespace
 
 LoadingProgram::LoadingProgram(Real velocity, Real ramp_time)
-    : segments_{{SegmentKind::Velocity, velocity, 0.0, 0.0, 0.0, 0.0, 0.0}},
+    : segments_{{SegmentKind::Velocity, velocity, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0}},
       ramp_time_(ramp_time),
       constant_(true) {}
 
@@ -28,14 +28,14 @@ LoadingProgram::LoadingProgram(const std::vector<SegmentSettings>& segments, Rea
     : ramp_time_(ramp_time), direction_(direction) {
   for (const SegmentSettings& g : segments) {
     if (g.kind != SegmentKind::Cycles) {
-      segments_.push_back(
-          {g.kind, g.velocity, g.duration, g.target, g.speed, g.response_time, g.stiffness});
+      segments_.push_back({g.kind, g.velocity, g.duration, g.target, g.speed, g.response_time,
+                           g.stiffness, g.tolerance});
       continue;
     }
     for (std::int64_t k = 0; k < g.count; ++k) {
       const Real peak = g.amplitude + static_cast<Real>(k) * g.amplitude_step;
-      segments_.push_back({SegmentKind::Displacement, 0.0, 0.0, peak, g.speed, 0.0, 0.0});
-      segments_.push_back({SegmentKind::Load, 0.0, 0.0, g.unload_to, g.speed, 0.0, 0.0});
+      segments_.push_back({SegmentKind::Displacement, 0.0, 0.0, peak, g.speed, 0.0, 0.0, 0.0});
+      segments_.push_back({SegmentKind::Load, 0.0, 0.0, g.unload_to, g.speed, 0.0, 0.0, 0.0});
     }
   }
 }
@@ -57,8 +57,9 @@ bool LoadingProgram::goal_met(const Segment& s, Real t, Real displacement, Real 
     case SegmentKind::Velocity:
       return s.duration > 0.0 && t - st_.start_time >= s.duration;
     case SegmentKind::Hold:
-    case SegmentKind::Force:
       return t - st_.start_time >= s.duration;
+    case SegmentKind::Force:
+      return st_.reached >= 0.0 && t - st_.reached >= s.duration;
     case SegmentKind::Displacement:
       // Reached or passed, from the side it started on (there already: done).
       return (displacement - s.target) * sign(s.target - st_.start_displacement) >= 0.0;
@@ -98,6 +99,7 @@ void LoadingProgram::start_segment(Real t, Real displacement, Real load, const s
   st_.start_displacement = displacement;
   st_.start_load = load;
   st_.ramp_from = st_.last;
+  st_.reached = -1.0;
   if (finished()) return;
   const Segment& s = segments_[static_cast<std::size_t>(st_.segment)];
   if (s.kind != SegmentKind::Force) return;
@@ -112,24 +114,34 @@ void LoadingProgram::start_segment(Real t, Real displacement, Real load, const s
 Real LoadingProgram::velocity(const StepClock& clock, Real displacement, Real load,
                               const std::string& part) {
   if (constant_) return ramp(0.0, segments_[0].velocity, 0.0, ramp_time_, clock.mid());
-  if (clock.time == 0.0 && st_.segment == 0 && st_.start_time == 0.0) {
-    // The first segment starts here: its goal is measured from this state.
-    st_.start_displacement = displacement;
-    st_.start_load = load;
-    if (!segments_.empty() && segments_[0].kind == SegmentKind::Force) {
-      --st_.segment;
-      st_.last = 0.0;
-      start_segment(0.0, displacement, load, part);
-    }
+  if (!st_.started) {
+    // The first segment starts at the first step: its goal is measured from this state.
+    st_.started = 1;
+    --st_.segment;
+    start_segment(clock.time, displacement, load, part);
+  }
+  if (!finished()) {
+    const Segment& s = segments_[static_cast<std::size_t>(st_.segment)];
+    if (s.kind == SegmentKind::Force && st_.reached < 0.0 &&
+        std::abs(load - s.target) <= s.tolerance * std::abs(s.target))
+      st_.reached = clock.time;
   }
   while (!finished() &&
          goal_met(segments_[static_cast<std::size_t>(st_.segment)], clock.time, displacement,
                   load))
     start_segment(clock.time, displacement, load, part);
-  const Real target =
-      finished() ? 0.0
-                 : nominal(segments_[static_cast<std::size_t>(st_.segment)], displacement, load);
-  st_.last = ramp(st_.ramp_from, target, st_.start_time, ramp_time_, clock.mid());
+  if (finished()) {
+    st_.last = ramp(st_.ramp_from, 0.0, st_.start_time, ramp_time_, clock.mid());
+    return st_.last;
+  }
+  const Segment& s = segments_[static_cast<std::size_t>(st_.segment)];
+  // The servo takes over from the previous velocity within a quarter of its response time, so
+  // that the servo, not the ramp, sets how the load approaches its target (the previous motion
+  // carried on over a whole ramp overshot it).
+  const Real blend =
+      s.kind == SegmentKind::Force ? std::min(ramp_time_, 0.25 * s.response_time) : ramp_time_;
+  st_.last = ramp(st_.ramp_from, nominal(s, displacement, load), st_.start_time, blend,
+                  clock.mid());
   return st_.last;
 }
 

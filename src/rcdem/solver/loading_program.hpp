@@ -2,8 +2,9 @@
 // How a plate or a pulled bar moves (issue 41, item 2; docs/model.md 13): a program of segments
 // (config/scenario.hpp, SegmentSettings), or a constant velocity. Every change of velocity, at the
 // start and between segments, follows one cosine ramp over the part's ramp time; a segment ends at
-// the first step its goal is met or passed (a displacement or load reached, its duration over),
-// and the next starts there. After the last segment the part stands still.
+// the first step its goal is met or passed (a displacement or load reached, its duration over;
+// a force segment's duration counts from the first step its load is within its tolerance of the
+// target), and the next starts there. After the last segment the part stands still.
 //
 // Velocities, displacements and loads are the part's own: a plate's along its axis and its load
 // (Plate::load), a pulled bar's along its pull and its pull-out force. `direction` is the way the
@@ -46,6 +47,8 @@ class LoadingProgram {
     Real ramp_from = 0.0;  // the velocity the ramp starts from
     Real last = 0.0;       // the last velocity returned
     Real stiffness = 0.0;  // a force segment's
+    Real reached = -1.0;   // a force segment's: when the load first came within its tolerance
+    std::int64_t started = 0;
   };
   State& state() { return st_; }
   const State& state() const { return st_; }
@@ -53,7 +56,7 @@ class LoadingProgram {
  private:
   struct Segment {
     SegmentKind kind;
-    Real velocity, duration, target, speed, response_time, stiffness;
+    Real velocity, duration, target, speed, response_time, stiffness, tolerance;
   };
   bool goal_met(const Segment& s, Real t, Real displacement, Real load) const;
   Real nominal(const Segment& s, Real displacement, Real load) const;
@@ -77,6 +80,8 @@ void archive_fields(Record& r, S& s) {
   r.put(s.ramp_from);
   r.put(s.last);
   r.put(s.stiffness);
+  r.put(s.reached);
+  r.put(s.started);
 }
 
 }  // namespace rcdem
