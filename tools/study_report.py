@@ -16,6 +16,12 @@ of them only; cases.csv and peak_loads.csv there are theirs, with a column `stud
   crack_height.png            height of the highest broken point near midspan vs deflection
   table3.md                   peak loads beside the paper's Table 3, and the behaviour checks
   report.json                 every number of table3.md, for tests and docs
+Where a run is not one of the paper's beams as the paper ran it (a case not named after a model
+of Table 3, another set-up, or a swept key: `rcdem study --sweep`), the report is generic:
+  curves/<run>.csv            load-displacement curve (displacement_m, load_N)
+  load_displacement.png       every run's curve, each labelled with its run directory
+  cases.md                    per run: case, swept value, seed, peak, displacement at peak, stop
+  report.json                 the same numbers
 Lengths in files are SI; plot axes are labelled in mm and kN.
 """
 import csv
@@ -76,8 +82,9 @@ def curve(case_dir, rows=None):
     """(deflection, load) per history row of a run (rows: its history.csv, if already read)."""
     rows = history(case_dir) if rows is None else rows
     summary = os.path.join(case_dir, "summary.json")  # absent while a run is going
-    control = json.load(open(summary)).get("control", "load") if os.path.exists(summary) else "load"
-    d = np.array([abs(float(r[f"{control}_displacement_m"])) for r in rows])
+    s = json.load(open(summary)) if os.path.exists(summary) else {}
+    column = s.get("displacement_column") or f"{s.get('control', 'load')}_displacement_m"
+    d = np.array([abs(float(r[column])) for r in rows])
     p = np.array([float(r["load_N"]) for r in rows])
     return d, p
 
@@ -387,7 +394,7 @@ def read_studies(studies):
         if not os.path.exists(os.path.join(study, "cases.csv")):
             sys.exit(f"{study}: no cases.csv (not a study directory, or its study has not run)")
         for r in read_runs(study):
-            key = (r["case"], r["seed"])
+            key = (r["case"], r["seed"], r.get("variant") or "")
             if key in where:
                 seed = f"seed {r['seed']}" if r["seed"] is not None else "its own seed"
                 sys.exit(f"{r['case']} on {seed} is in both {where[key]} and {study}: "
@@ -395,7 +402,8 @@ def read_studies(studies):
             where[key] = study
             runs.append(r)
     # In (case, seed) order whatever the order of the studies: the same runs, the same report.
-    return sorted(runs, key=lambda r: (r["case"], -1 if r["seed"] is None else r["seed"]))
+    return sorted(runs, key=lambda r: (r["case"], r.get("variant") or "",
+                                       -1 if r["seed"] is None else r["seed"]))
 
 
 def write_merged_tables(out, studies):
@@ -756,6 +764,63 @@ def commit_of(runs):
     return "commit " + ", ".join(sorted(found)) if found else "commit not recorded"
 
 
+def is_paper_run(r):
+    """A run of one of the paper's beams as the paper ran it: a case named after a model of Table 3
+    (AN0, AN2_NL-B, ...) on the paper's three-point set-up, with no swept key."""
+    try:
+        s = json.load(open(os.path.join(r["path"], "summary.json")))
+    except (OSError, ValueError):
+        return False
+    return (r.get("model") in TABLE3 and not r.get("variant") and s.get("control") == "load"
+            and s.get("displacement_column", "load_displacement_m") == "load_displacement_m")
+
+
+def generic_report(runs, out):
+    """Any study's cases as they are: each run named by its directory (case, swept value, seed)
+    in every table and legend; its load-displacement curve, peak and how it ended."""
+    data, report = {}, {"cases": {}, "kind": "generic"}
+    for r in runs:
+        k = r["directory"]
+        d, p = curve(r["path"])
+        data[k] = (d, p)
+        with open(os.path.join(out, "curves", k + ".csv"), "w") as f:
+            f.write("displacement_m,load_N\n")
+            f.writelines(f"{a:.8g},{b:.8g}\n" for a, b in zip(d, p))
+        s = json.load(open(os.path.join(r["path"], "summary.json")))
+        report["cases"][k] = {
+            "case": r["case"], "variant": r.get("variant") or "", "seed": r["seed"],
+            "control": s.get("control"), "displacement_column": s.get("displacement_column"),
+            "peak_load_N": s["peak_load_N"], "displacement_at_peak_m": s["displacement_at_peak_m"],
+            "stop_reason": s.get("stop_reason"), "steps": s.get("steps"),
+            "energy_balance_error": s["energy"]["balance_error"]}
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for k in sorted(data):
+        d, p = data[k]
+        ax.plot(1e3 * d, 1e-3 * p, lw=1.2, label=k)
+    ax.set_xlabel("displacement (mm)")
+    ax.set_ylabel("load (kN)")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "load_displacement.png"), dpi=110)
+    plt.close(fig)
+    report["commit"] = commit_of(runs)
+    lines = [f"# Study: {len(runs)} runs ({report['commit']})", "",
+             "| run | case | swept value | seed | peak (kN) | displacement at peak (mm) | stopped by "
+             "| steps | energy balance |", "|---|---|---|---|---|---|---|---|---|"]
+    for k in sorted(report["cases"]):
+        c = report["cases"][k]
+        lines.append(
+            f"| {k} | {c['case']} | {c['variant'] or '-'} | {c['seed']} | "
+            f"{c['peak_load_N'] / 1e3:.2f} | {abs(c['displacement_at_peak_m']) * 1e3:.4f} | "
+            f"{c['stop_reason']} | {c['steps']} | {c['energy_balance_error']:.2g} |")
+    with open(os.path.join(out, "cases.md"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+    with open(os.path.join(out, "report.json"), "w") as f:
+        json.dump(report, f, indent=2)
+    print("\n".join(lines))
+
+
 def main(studies, out):
     runs = read_studies(studies)
     if not runs:
@@ -763,6 +828,9 @@ def main(studies, out):
     os.makedirs(os.path.join(out, "curves"), exist_ok=True)
     if [os.path.abspath(out)] != [os.path.abspath(s) for s in studies]:
         write_merged_tables(out, studies)
+    if not all(is_paper_run(r) for r in runs):
+        generic_report(runs, out)
+        return
     data, report = {}, {"cases": {}, "models": {}}  # data: run directory -> (deflection, load)
     paths = {r["directory"]: r["path"] for r in runs}
     for r in runs:

@@ -222,18 +222,21 @@ int calibrate(const fs::path& scenario_path, fs::path out, bool force, double si
 // non-empty directory is refused unless --force.
 int study(const std::string& name, fs::path scenarios, fs::path out, bool force, bool quick,
           const std::vector<std::string>& cases, const std::vector<std::uint64_t>& seeds,
-          const std::vector<std::string>& sets, int jobs) {
+          const std::vector<std::string>& sets, const std::string& sweep, int jobs) {
   rcdem::StudyOptions o;
   o.label = name + (quick ? " (quick)" : "");
   o.scenarios = scenarios.empty() ? rcdem::builtin_study_scenarios(name, quick) : scenarios;
   if (!fs::is_directory(o.scenarios))
     rcdem::fail("--scenarios '{}': not a directory of scenarios", o.scenarios.string());
-  if (name == "three_point_bending") o.report_script = "study_report.py";
+  // The report: the paper's tables and figures where every case is a paper beam, else a table and
+  // figure of the cases as they are (tools/study_report.py decides).
+  if (name == "three_point_bending" || !scenarios.empty()) o.report_script = "study_report.py";
   if (out.empty()) out = fs::path("results") / ("study_" + name + (quick ? "_quick" : ""));
   o.out = out;
   o.cases = cases;
   o.seeds = seeds;
   o.sets = sets;
+  o.sweep = sweep;
   o.force = force;
   // Quick cases are small: one per core, one thread each, beats one case on every core.
   const int cores = std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
@@ -385,6 +388,11 @@ int main(int argc, char** argv) {
   stc->add_flag("--force", force, "Rerun finished cases");
   stc->add_option("--set", sets, std::string(set_help) + "; applied to every case")
       ->type_name("KEY=VALUE");
+  std::string sweep;
+  stc->add_option("--sweep", sweep,
+                  "Run every case once per value of one key: KEY=V1,V2,... (e.g. "
+                  "contact.sigma_nt=3e6,4.23e6,5.5e6), each case named <case>_<LEAF>=<V>")
+      ->type_name("KEY=V1,V2,...");
   int jobs = 0;
   stc->add_option("-j,--jobs", jobs,
                   "Cases run side by side (default: one per core with --quick, else 1)")
@@ -420,7 +428,8 @@ int main(int argc, char** argv) {
       return calibrate(scenario, out, force, size, rate_factor, sets, target, tolerance, iterations,
                        peak_only, tension_lever);
     if (*stc)
-      return study(study_name, study_scenarios, out, force, quick, cases, seeds, sets, jobs);
+      return study(study_name, study_scenarios, out, force, quick, cases, seeds, sets, sweep,
+                   jobs);
     if (*schema) {
       rcdem::config::scenario_schema().print_template(std::cout);
       return 0;

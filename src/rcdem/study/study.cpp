@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
+#include <sstream>
 
 #include "rcdem/config/scenario.hpp"
 #include "rcdem/config/scenario_overrides.hpp"
@@ -65,41 +66,50 @@ std::string interface_name(const Scenario& s) {
 
 struct CaseRecord {
   std::string name, model, interface, status;  // status: finished, failed, not run
+  std::string variant;                         // a sweep's KEY=VALUE, or ""
   std::uint64_t seed = 0;                      // the packing it runs on
   std::string dir;                             // its run directory under DIR/cases
   nlohmann::json summary;                      // the case's summary.json when finished
   std::string error;
-  std::string label() const { return dir == name ? name : fmt::format("{} (seed {})", name, seed); }
+  std::string label() const {
+    if (dir == name) return name;
+    return variant.empty() ? fmt::format("{} (seed {})", name, seed)
+                           : fmt::format("{} ({}, seed {})", name, variant, seed);
+  }
 };
 
 void write_tables(const fs::path& out, const std::vector<CaseRecord>& cases,
                   const StudyOptions& o) {
-  std::string peaks = "model,interface,seed,peak_load_N,deflection_at_peak_m\n";
+  std::string peaks =
+      "case,directory,variant,model,interface,seed,peak_load_N,deflection_at_peak_m\n";
   std::string table =
-      "case,seed,directory,model,interface,status,stop_reason,steps,time_step_s,wall_time_s,"
-      "peak_load_N,deflection_at_peak_m,energy_balance_error\n";
+      "case,seed,directory,variant,model,interface,status,stop_reason,steps,time_step_s,"
+      "wall_time_s,peak_load_N,deflection_at_peak_m,energy_balance_error\n";
   nlohmann::json study;
   study["study"] = o.label;
   study["scenarios"] = fs::absolute(o.scenarios).lexically_normal().string();
   study["seeds"] = o.seeds;
+  study["sweep"] = o.sweep;
   study["cases"] = nlohmann::json::array();
   for (const auto& c : cases) {
-    nlohmann::json jc = {
-        {"case", c.name}, {"seed", c.seed}, {"directory", c.dir}, {"status", c.status}};
+    nlohmann::json jc = {{"case", c.name},        {"seed", c.seed},      {"directory", c.dir},
+                         {"variant", c.variant},  {"status", c.status}};
     if (!c.error.empty()) jc["error"] = c.error;
     if (c.status == "finished") {
       const auto& s = c.summary;
-      peaks += fmt::format("{},{},{},{:.9g},{:.9g}\n", c.model, c.interface, c.seed,
-                           s.value("peak_load_N", 0.0), s.value("displacement_at_peak_m", 0.0));
+      peaks += fmt::format("{},{},{},{},{},{},{:.9g},{:.9g}\n", c.name, c.dir, c.variant, c.model,
+                           c.interface, c.seed, s.value("peak_load_N", 0.0),
+                           s.value("displacement_at_peak_m", 0.0));
       table += fmt::format(
-          "{},{},{},{},{},{},{},{},{:.6g},{:.1f},{:.9g},{:.9g},{:.3g}\n", c.name, c.seed, c.dir,
-          c.model, c.interface, c.status, s.value("stop_reason", ""), s.value("steps", 0L),
+          "{},{},{},{},{},{},{},{},{},{:.6g},{:.1f},{:.9g},{:.9g},{:.3g}\n", c.name, c.seed, c.dir,
+          c.variant, c.model, c.interface, c.status, s.value("stop_reason", ""),
+          s.value("steps", 0L),
           s.value("time_step_s", 0.0), s.value("seconds", 0.0), s.value("peak_load_N", 0.0),
           s.value("displacement_at_peak_m", 0.0), s["energy"].value("balance_error", 0.0));
       jc["wall_time_s"] = s.value("seconds", 0.0);
     } else {
-      table += fmt::format("{},{},{},{},{},{},,,,,,,\n", c.name, c.seed, c.dir, c.model,
-                           c.interface, c.status);
+      table += fmt::format("{},{},{},{},{},{},{},,,,,,,\n", c.name, c.seed, c.dir, c.variant,
+                           c.model, c.interface, c.status);
     }
     study["cases"].push_back(jc);
   }
@@ -161,7 +171,34 @@ struct StudyCase {
   fs::path file;
   Scenario scenario;
   std::optional<std::uint64_t> seed;  // --seeds' value, or none: the scenario's own
+  std::string variant;                // --sweep's KEY=VALUE, or ""
+  std::vector<std::string> sets;      // --set's items, and the variant
 };
+
+// --sweep KEY=V1,V2,...: its items KEY=V1, KEY=V2, ... ({""} without a sweep), each checked as a
+// --set item; the key may not also be given to --set.
+std::vector<std::string> sweep_items(const StudyOptions& o) {
+  if (o.sweep.empty()) return {""};
+  const auto eq = o.sweep.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == o.sweep.size())
+    fail("--sweep '{}': expected KEY=V1,V2,... (e.g. contact.sigma_nt=3e6,4.23e6,5.5e6)",
+         o.sweep);
+  const std::string key = o.sweep.substr(0, eq);
+  std::vector<std::string> items;
+  std::set<std::string> distinct;
+  std::stringstream values(o.sweep.substr(eq + 1));
+  for (std::string v; std::getline(values, v, ',');) {
+    if (v.empty() || !distinct.insert(v).second)
+      fail("--sweep '{}': expected distinct, non-empty values", o.sweep);
+    items.push_back(key + "=" + v);
+  }
+  for (const auto& item : o.sets)
+    if (item.substr(0, item.find('=')) == key)
+      fail("--sweep '{}': key '{}' is also given to --set", o.sweep, key);
+  for (const auto& item : items)
+    for (const config::Override& ov : config::parse_overrides({item})) config::check_override(ov);
+  return items;
+}
 
 // The runs of a study that --cases and --seeds select, each read and checked before anything
 // runs: a typo in the last case should not surface hours into the study.
@@ -181,14 +218,18 @@ std::vector<StudyCase> load_cases(const StudyOptions& o) {
     if (!distinct.insert(seed).second) fail("--seeds: seed {} is given twice", seed);
   std::vector<std::optional<std::uint64_t>> seeds(o.seeds.begin(), o.seeds.end());
   if (seeds.empty()) seeds.push_back(std::nullopt);
+  const std::vector<std::string> variants = sweep_items(o);
   std::vector<StudyCase> todo;
   for (const auto& f : files) {
     if (!wanted.empty() && !wanted.count(f.stem().string())) continue;
-    for (const auto& seed : seeds) {
-      Scenario s = config::load_scenario_on_seed(f, seed, o.sets);
-      validate_run(s);
-      todo.push_back({f, std::move(s), seed});
-    }
+    for (const auto& variant : variants)
+      for (const auto& seed : seeds) {
+        std::vector<std::string> sets = o.sets;
+        if (!variant.empty()) sets.push_back(variant);
+        Scenario s = config::load_scenario_on_seed(f, seed, sets);
+        validate_run(s);
+        todo.push_back({f, std::move(s), seed, variant, std::move(sets)});
+      }
   }
   return todo;
 }
@@ -233,7 +274,14 @@ CaseRecord StudyRun::initial_record(std::size_t i) {
   rec.model = rec.name.substr(0, rec.name.find('_'));
   rec.interface = interface_name(sc.scenario);
   rec.seed = sc.scenario.generation.seed;
-  rec.dir = sc.seed ? fmt::format("{}_seed{}", rec.name, *sc.seed) : rec.name;
+  rec.variant = sc.variant;
+  rec.dir = rec.name;
+  if (!sc.variant.empty()) {
+    // The key's last part and the value: "AN0_sigma_nt=3e6".
+    const std::string key = sc.variant.substr(0, sc.variant.find('='));
+    rec.dir += "_" + key.substr(key.rfind('.') + 1) + sc.variant.substr(sc.variant.find('='));
+  }
+  if (sc.seed) rec.dir += fmt::format("_seed{}", *sc.seed);
   rec.status = "not run";
   const fs::path dir = o_.out / "cases" / rec.dir;
   if (!fs::exists(dir / "summary.json") || o_.force) {
@@ -313,8 +361,8 @@ void StudyRun::start_next(std::map<pid_t, std::size_t>& running, std::size_t& ne
         fmt::print(stderr, "{}: {} ({}; log {})\n", records_[i].label(),
                    resume ? "resumed from its last checkpoint" : "started", todo_[i].file.string(),
                    (dir / "run.log").string());
-      running[spawn_run(todo_[i].file, dir, o_.threads_per_job, resume, todo_[i].seed, o_.sets)] =
-          i;
+      running[spawn_run(todo_[i].file, dir, o_.threads_per_job, resume, todo_[i].seed,
+                        todo_[i].sets)] = i;
     } catch (const Error& e) {
       finish(i, e.what());
     }
@@ -368,7 +416,7 @@ void remove_report(const fs::path& out) {
     const std::string name = it->path().filename().string();
     const bool figure = name.rfind("figure", 0) == 0 && it->path().extension() == ".png";
     if (figure || name == "crack_height.png" || name == "table3.md" || name == "report.json" ||
-        name == "report.log")
+        name == "report.log" || name == "cases.md" || name == "load_displacement.png")
       old.push_back(it->path());
   }
   for (const auto& p : old) fs::remove(p, ec);

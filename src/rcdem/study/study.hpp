@@ -17,6 +17,9 @@ struct StudyOptions {
   // empty: each case on its scenario's own seed, into DIR/cases/<case>/.
   std::vector<std::uint64_t> seeds;
   std::vector<std::string> sets;  // --set KEY=VALUE items applied to every case
+  // --sweep KEY=V1,V2,...: every case once per value, into DIR/cases/<case>_<LEAF>=<V>[_seed<N>]/
+  // (LEAF: the key's last part); empty: no sweep.
+  std::string sweep;
   std::string report_script;  // tools/<script> run on DIR at the end ("" for none)
   std::string label;          // what the study is, for study.json and messages
   bool force = false;         // rerun finished cases
