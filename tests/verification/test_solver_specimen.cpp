@@ -348,7 +348,7 @@ static void glued_plate_tension_reaches_static_solution(Real added_mass_limit) {
       EXPECT_NEAR(top.displacement / delta, 1.0, 1e-3);
       reaction_mismatch_at_load_end =
           std::abs(top.force.z() + bottom.force.z()) / std::abs(top.force.z());
-      top.velocity = 0.0;  // hold
+      top.set_velocity(0.0);  // hold
     }
     sim.step();
   }

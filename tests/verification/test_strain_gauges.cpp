@@ -111,7 +111,7 @@ TEST(StrainGauges, ElasticModulusDoesNotDependOnCubeSize) {
     ASSERT_EQ(sim.time_step(), dt);
     Plate& top = sim.plates()[1];
     for (int s = 0; s < load_steps + hold_steps; ++s) {
-      if (s == load_steps) top.velocity = 0.0;
+      if (s == load_steps) top.set_velocity(0.0);
       sim.step();
     }
     const io::StrainGauges gauges(sim.specimen());

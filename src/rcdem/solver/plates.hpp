@@ -43,6 +43,13 @@ struct Plate {
   Real work = 0.0;            // done by the plate on the specimen
   Index contacts_active = 0;
 
+  // From now on a constant velocity (a program's plate leaves its program), reached over the ramp
+  // time from t = 0 as at the start: a held plate (0) stops at once once that time has passed.
+  void set_velocity(Real v) {
+    velocity = v;
+    motion = LoadingProgram(v, ramp_time);
+    if (v != 0.0) direction = v > 0.0 ? 1.0 : -1.0;
+  }
   // The reaction along the axis, signed so that it is positive when it resists the plate's
   // motion in `direction`.
   Real load() const { return -direction * force[axis]; }
