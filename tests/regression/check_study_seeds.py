@@ -60,10 +60,11 @@ with tempfile.TemporaryDirectory() as tmp:
     check(r.returncode == 0, f"the two-seed quick AN0 study exits 0 ({r.stderr.strip()[-300:]})")
     runs = {s: os.path.join(out, "cases", f"AN0_seed{s}") for s in (1, 2)}
     peaks = list(csv.DictReader(open(os.path.join(out, "peak_loads.csv"))))
-    check(peaks and list(peaks[0]) == ["model", "interface", "seed", "peak_load_N",
-                                       "deflection_at_peak_m"]
-          and sorted(p["seed"] for p in peaks) == ["1", "2"],
-          "peak_loads.csv has a seed column and one row per packing")
+    check(peaks and list(peaks[0]) == ["case", "directory", "variant", "model", "interface", "seed",
+                                       "peak_load_N", "deflection_at_peak_m"]
+          and sorted(p["seed"] for p in peaks) == ["1", "2"]
+          and sorted(p["directory"] for p in peaks) == ["AN0_seed1", "AN0_seed2"],
+          "peak_loads.csv has a seed column and one row per packing, each naming its run")
     cases = list(csv.DictReader(open(os.path.join(out, "cases.csv"))))
     check([(c["case"], c["seed"], c["directory"]) for c in cases]
           == [("AN0", "1", "AN0_seed1"), ("AN0", "2", "AN0_seed2")],
