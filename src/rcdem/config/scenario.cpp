@@ -6,6 +6,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "rcdem/config/bar_path.hpp"
 #include "rcdem/config/scenario_bindings.hpp"
 #include "rcdem/config/scenario_checks.hpp"
 #include "rcdem/config/scenario_text.hpp"
@@ -111,8 +112,11 @@ struct Reader {
       case KeyType::RealArray: {
         const auto* array = node.as_array();
         if (!array) bad_value(node, decl, describe_node(node), path);
-        if (static_cast<int>(array->size()) != decl.array_size &&
-            !(array->empty() && decl.default_value))
+        const int size = static_cast<int>(array->size());
+        const bool fits = decl.array_step > 0
+                              ? size % decl.array_step == 0 && size >= 2 * decl.array_step
+                              : size == decl.array_size;
+        if (!fits && !(array->empty() && decl.default_value))
           bad_value(node, decl, fmt::format("an array of {} elements", array->size()), path);
         std::vector<double> v;
         for (const auto& element : *array) {
@@ -402,6 +406,31 @@ PlateSettings convert_plate(const Reader& r, const Scenario& s, const std::strin
   return p;
 }
 
+// The bar's length, and its axis inside the specimen with a cover of one radius across it (along
+// it, a straight bar's end may reach a face: a pull-out bar leaves the specimen there).
+void check_bar_axis(const Reader& r, const Scenario& s, const std::string& inst,
+                    const BarSettings& b) {
+  const Real length = b.bent() ? b.length() : (b.end - b.start).norm();
+  const std::string key = inst + (b.bent() ? ".path" : ".end");
+  if (length < 2.0 * b.diameter)
+    fail("{}: bar '{}' is {} m long: expected at least two diameters ({} m) between start and end",
+         r.at(key), b.name, length, 2.0 * b.diameter);
+  const Vec3 dir = b.bent() ? Vec3(Vec3::Zero()) : Vec3((b.end - b.start) / length);
+  const std::vector<Vec3> axis = b.centreline();
+  for (std::size_t k = 0; k < axis.size(); ++k) {
+    const Vec3& p = axis[k];
+    for (int ax = 0; ax < 3; ++ax) {
+      const Real cover = std::abs(dir[ax]) > 0.999 ? 0.0 : 0.5 * b.diameter;
+      if (p[ax] < cover || p[ax] > s.specimen.size[ax] - cover)
+        fail(
+            "{}: bar '{}': its {} ({}, {}, {}) m is not inside the specimen with half a "
+            "diameter of cover",
+            r.at(b.bent() ? key : inst + (k == 0 ? ".start" : ".end")), b.name,
+            b.bent() ? "axis at" : k == 0 ? "start" : "end", p[0], p[1], p[2]);
+    }
+  }
+}
+
 // One [bars.NAME] section, checked against the specimen in `s`.
 BarSettings convert_bar(const Reader& r, const Scenario& s, const std::string& inst) {
   BarSettings b;
@@ -426,23 +455,26 @@ BarSettings convert_bar(const Reader& r, const Scenario& s, const std::string& i
         "has no strength to scale",
         r.at(key), key);
   }
-  const Real length = (b.end - b.start).norm();
-  if (length < 2.0 * b.diameter)
-    fail("{}: bar '{}' is {} m long: expected at least two diameters ({} m) between start and end",
-         r.at(inst + ".end"), b.name, length, 2.0 * b.diameter);
-  // The bar must lie inside the specimen, with a cover of one radius across it (along it, an
-  // end may reach a face: a pull-out bar leaves the specimen there).
-  const Vec3 dir = (b.end - b.start) / length;
-  for (const auto* p : {&b.start, &b.end})
-    for (int ax = 0; ax < 3; ++ax) {
-      const Real cover = std::abs(dir[ax]) > 0.999 ? 0.0 : 0.5 * b.diameter;
-      if ((*p)[ax] < cover || (*p)[ax] > s.specimen.size[ax] - cover)
-        fail(
-            "{}: bar '{}': its {} ({}, {}, {}) m is not inside the specimen with half a "
-            "diameter of cover",
-            r.at(inst + (p == &b.start ? ".start" : ".end")), b.name,
-            p == &b.start ? "start" : "end", (*p)[0], (*p)[1], (*p)[2]);
-    }
+  if (!b.bent() && !(r.lines.count(inst + ".start") && r.lines.count(inst + ".end")))
+    fail("{}: section [{}]: a bar needs its axis: keys '{}.start' and '{}.end', or '{}.path'",
+         r.at(inst), inst, inst, inst, inst);
+  if (b.bent() && (r.lines.count(inst + ".start") || r.lines.count(inst + ".end")))
+    fail("{}: section [{}]: a bar is straight (start, end) or bent (path), not both", r.at(inst),
+         inst);
+  if (!b.bent() && (b.closed || b.bend_radius > 0.0))
+    fail("{}: section [{}]: closed and bend_radius are for a bent bar (a path)", r.at(inst),
+         inst);
+  if (b.bent()) {
+    std::vector<Vec3> corners;
+    for (std::size_t i = 0; i + 2 < b.path.size(); i += 3)
+      corners.emplace_back(b.path[i], b.path[i + 1], b.path[i + 2]);
+    const Real radius = b.bend_radius > 0.0 ? b.bend_radius : 2.0 * b.diameter;
+    b.axis = bar_centreline(corners, b.closed, radius,
+                            fmt::format("{}: key '{}.path'", r.at(inst + ".path"), inst));
+    b.start = b.axis.front();
+    b.end = b.closed ? b.axis[1] : b.axis.back();
+  }
+  check_bar_axis(r, s, inst, b);
   return b;
 }
 

@@ -142,7 +142,31 @@ struct BarSettings {
   Real pull_velocity = 0.0;             // pull-out of the first cylinder along end -> start
   Real pull_ramp_time = 0.0;
   std::vector<SegmentSettings> program;  // a pull-out program instead of pull_velocity
+  // A bent bar (issue 41, item 4): its corner points x0, y0, z0, x1, ... instead of start and
+  // end, `closed` for a loop (a stirrup), each corner rounded with `bend_radius` (0: 2 D).
+  std::vector<Real> path;
+  bool closed = false;
+  Real bend_radius = 0.0;
+  // A bent bar's centreline, the path with its bends as chords (config/bar_path.hpp; set by the
+  // loader; start is its first point).
+  std::vector<Vec3> axis;
   bool pulled() const { return pull_velocity > 0.0 || !program.empty(); }
+  bool bent() const { return !path.empty(); }
+  // The axis as points: start and end, or a bent bar's centreline.
+  std::vector<Vec3> centreline() const { return bent() ? axis : std::vector<Vec3>{start, end}; }
+  // Its chords [a, b] in order, a loop's closing chord last.
+  std::vector<std::pair<Vec3, Vec3>> chords() const {
+    const std::vector<Vec3> p = centreline();
+    std::vector<std::pair<Vec3, Vec3>> c;
+    for (std::size_t i = 0; i + 1 < p.size(); ++i) c.emplace_back(p[i], p[i + 1]);
+    if (closed && p.size() > 2) c.emplace_back(p.back(), p.front());
+    return c;
+  }
+  Real length() const {
+    Real l = 0.0;
+    for (const auto& [a, b] : chords()) l += (b - a).norm();
+    return l;
+  }
   Real spacing() const { return sphere_spacing > 0.0 ? sphere_spacing : 0.5 * diameter; }
 };
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "rcdem/config/specimen_geometry.hpp"
 #include "rcdem/config/specimen_registry.hpp"
@@ -49,7 +50,7 @@ void check_model_size(const Scenario& s) {
         key_location(s, "specimen.size"), concrete, s.generation.max_particles);
   double bodies = concrete;
   for (const auto& b : s.bars) {
-    const double length = (b.end - b.start).norm();
+    const double length = b.length();
     const double cylinders = std::max(1.0, std::round(length / b.cylinder_length));
     const double spheres = std::max(cylinders, length / b.spacing());
     if (cylinders > limit)
@@ -125,7 +126,9 @@ void check_bar_layout(const Scenario& s) {
   for (std::size_t i = 0; i < s.bars.size(); ++i)
     for (std::size_t j = i + 1; j < s.bars.size(); ++j) {
       const auto &a = s.bars[i], &b = s.bars[j];
-      const Real gap = segment_distance(a.start, a.end, b.start, b.end);
+      Real gap = std::numeric_limits<Real>::infinity();
+      for (const auto& [a0, a1] : a.chords())
+        for (const auto& [b0, b1] : b.chords()) gap = std::min(gap, segment_distance(a0, a1, b0, b1));
       const Real radii = 0.5 * (a.diameter + b.diameter);
       if (gap < radii)
         fail(
@@ -136,7 +139,8 @@ void check_bar_layout(const Scenario& s) {
   const SpecimenGeometry g = specimen_geometry(s);
   if (!g.notch.present()) return;
   for (const auto& b : s.bars) {
-    const Real gap = distance_to_notch(b.start, b.end, g);
+    Real gap = std::numeric_limits<Real>::infinity();
+    for (const auto& [b0, b1] : b.chords()) gap = std::min(gap, distance_to_notch(b0, b1, g));
     if (gap < 0.5 * b.diameter)
       fail(
           "{}: bar '{}' cuts through the notch (specimen.notch_depth = {} m): its axis comes "

@@ -533,10 +533,22 @@ void declare_bars(Declarations& s) {
   s.section("bars", "Steel bars (paper 2.5-2.6, SPEC 7-8): one [bars.NAME] table per bar.");
   s.section("bars.*",
             "A straight steel bar: a chain of rigid cylinders with lumped interaction nodes.");
-  s.bar(array("bars.*.start", 3, Range{}, "m", "First end of the bar's axis [x, y, z]."),
-        Need::Required, &B::start);
-  s.bar(array("bars.*.end", 3, Range{}, "m", "Last end of the bar's axis [x, y, z]."),
-        Need::Required, &B::end);
+  s.bar(array("bars.*.start", 3, Range{}, "m",
+              "First end of a straight bar's axis [x, y, z] (or give a path)."),
+        Need::Default, &B::start);
+  s.bar(array("bars.*.end", 3, Range{}, "m", "Last end of a straight bar's axis [x, y, z]."),
+        Need::Default, &B::end);
+  KeyDecl path = array("bars.*.path", 0, Range{}, "m",
+                       "A bent bar instead: its corner points [x0, y0, z0, x1, y1, z1, ...] in "
+                       "order (hooks, stirrups; docs/model.md 14).");
+  path.array_step = 3;
+  s.bar(path, Need::Default, &B::path);
+  s.bar(typed("bars.*.closed", KeyType::Boolean, Range{},
+              "A bent bar that closes on itself (a stirrup): its last point joins its first."),
+        Need::Default, &B::closed);
+  s.bar(real("bars.*.bend_radius", Range{0.0, 10.0}, "m",
+             "A bent bar's bends: the radius of its axis round each corner (0: 2 D)."),
+        Need::Default, &B::bend_radius);
   s.bar(positive("bars.*.diameter", 10.0, "m", "Bar diameter D."), Need::Required, &B::diameter);
   s.bar(positive("bars.*.cylinder_length", 100.0, "m",
                  "Target length of the rigid cylinders (the bar is cut into equal ones)."),

@@ -118,7 +118,9 @@ std::string Schema::describe_expected(const KeyDecl& decl) {
       return what;
     }
     case KeyType::RealArray:
-      what = fmt::format("an array of {} numbers", decl.array_size);
+      what = decl.array_step > 0
+                 ? fmt::format("an array of {} n numbers (n >= 2 points)", decl.array_step)
+                 : fmt::format("an array of {} numbers", decl.array_size);
       break;
     case KeyType::StringArray:
       return "an array of names";

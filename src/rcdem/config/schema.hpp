@@ -32,6 +32,7 @@ struct KeyDecl {
   Range range;                         // for Real, Integer and each RealArray element
   std::vector<std::string> choices;    // for String: the admissible values
   int array_size = 0;                  // for RealArray: the exact length
+  int array_step = 0;  // for RealArray: instead, any multiple of this, at least two of them
   std::string unit;                    // SI unit, "" for dimensionless
   std::string doc;
 };

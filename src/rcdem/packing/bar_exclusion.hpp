@@ -23,7 +23,8 @@ struct BarAxis {
 
 inline std::vector<BarAxis> bar_axes(const std::vector<BarSettings>& bars) {
   std::vector<BarAxis> axes;
-  for (const auto& b : bars) axes.push_back({b.start, b.end, 0.5 * b.diameter});
+  for (const auto& b : bars)
+    for (const auto& [a, e] : b.chords()) axes.push_back({a, e, 0.5 * b.diameter});
   return axes;
 }
 

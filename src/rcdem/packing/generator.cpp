@@ -123,7 +123,7 @@ Particles generate_packing(const GenerationSettings& s, const SpecimenGeometry& 
   const std::vector<BarAxis> bars = bar_axes(bar_settings);
   Real bar_volume = 0.0;
   for (const auto& b : bar_settings)
-    bar_volume += 0.25 * kPi * b.diameter * b.diameter * (b.end - b.start).norm();
+    bar_volume += 0.25 * kPi * b.diameter * b.diameter * b.length();
   const Real volume = g.volume() - bar_volume;  // the concrete's volume
 
   const DiameterDistribution aggregate{s.aggregate_grading, s.aggregate_d_min, s.aggregate_d_max,

@@ -26,6 +26,14 @@ Bar build_straight_bar(const Vec3& start, const Vec3& end, Real diameter,
                        const SteelMaterial& steel,
                        Real target_cylinder_length = kDefaultCylinderLength);
 
+// A bent bar along the centreline `points` (config/bar_path.hpp): each chord cut into
+// round(length / target_cylinder_length) (at least 1) equal cylinders along it, a node between
+// consecutive cylinders (a kinked one at a bend), and for a loop (`closed`) a node joining the
+// last cylinder to the first. Fails as build_straight_bar does.
+Bar build_polyline_bar(const std::vector<Vec3>& points, bool closed, Real diameter,
+                       const SteelMaterial& steel,
+                       Real target_cylinder_length = kDefaultCylinderLength);
+
 // The nodes' constants, with the orientations the solver holds for the cylinders at t = 0
 // (identity when it stores rotations since t = 0; orientation_for_axis() when it stores
 // body-to-world rotations).

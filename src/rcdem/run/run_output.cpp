@@ -208,6 +208,11 @@ History::History(const Simulation& sim, const Scenario& sc)
   for (const auto& b : sim.pulled_bars())
     if (b.motion.explicit_program()) columns_.push_back(b.name + "_program_segment");
   if (measures_.several_plates()) columns_.emplace_back("control_displacement_m");
+  for (std::size_t k = 0; k < sc.bars.size(); ++k)
+    if (sc.bars[k].bent()) {
+      bent_bars_.push_back(static_cast<int>(k));
+      columns_.push_back(sc.bars[k].name + "_max_axial_force_N");
+    }
   const auto plates = sc.load_plates();
   displacement_column_ = !sc.displacement_gauge.empty() ? "gauge_" + sc.displacement_gauge + "_m"
                          : plates.size() > 1           ? "control_displacement_m"
@@ -244,6 +249,13 @@ void History::record(const Simulation& sim) {
   for (const auto& b : sim.pulled_bars())
     if (b.motion.explicit_program()) row.push_back(static_cast<double>(b.motion.segment()));
   if (measures_.several_plates()) row.push_back(measures_.control_displacement());
+  for (const int bar : bent_bars_) {
+    // The largest |N| over the bar's nodes: a stirrup carries force where a crack crosses it.
+    Real most = 0.0;
+    for (std::size_t j = 0; j < sim.nodes().size(); ++j)
+      if (sim.nodes()[j].bar == bar) most = std::max(most, std::abs(sim.node_states()[j].axial_force));
+    row.push_back(most);
+  }
   rows_.push_back(std::move(row));
 }
 

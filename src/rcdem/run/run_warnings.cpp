@@ -23,7 +23,7 @@ void set_expectation(const Scenario& sc, RunOutcome& o) {
   for (const auto& b : sc.bars) {
     if (b.name != sc.control_bar) continue;
     o.expected_load = b.f_y * kPi / 4.0 * b.diameter * b.diameter;
-    o.loaded_travel = 10.0 * b.f_y / b.E * (b.end - b.start).norm();
+    o.loaded_travel = 10.0 * b.f_y / b.E * b.length();
   }
 }
 

@@ -14,7 +14,9 @@ PulledBars::PulledBars(const Scenario& sc, const Specimen& specimen, PrescribedM
       PulledBar pb;
       pb.name = bs.name;
       pb.body = body;
-      pb.direction = (bs.start - bs.end).normalized();
+      // Along its first chord, out of the specimen (a straight bar: end -> start).
+      const std::vector<Vec3> axis = bs.centreline();
+      pb.direction = (axis[0] - axis[1]).normalized();
       pb.speed = bs.pull_velocity;
       pb.ramp_time = bs.pull_ramp_time;
       pb.motion = bs.program.empty() ? LoadingProgram(bs.pull_velocity, bs.pull_ramp_time)

@@ -29,9 +29,13 @@ void add_interface_spheres(const CylinderGeometry& cyl, Real diameter, Real spac
 Specimen build_specimen(const Scenario& scenario) {
   Specimen s;
   s.geometry = specimen_geometry(scenario);
-  for (const auto& b : scenario.bars)
-    s.bars.push_back(build_straight_bar(
-        b.start, b.end, b.diameter, SteelMaterial{b.E, b.nu, b.f_y, b.density}, b.cylinder_length));
+  for (const auto& b : scenario.bars) {
+    const SteelMaterial steel{b.E, b.nu, b.f_y, b.density};
+    s.bars.push_back(b.bent() ? build_polyline_bar(b.axis, b.closed, b.diameter, steel,
+                                                   b.cylinder_length)
+                              : build_straight_bar(b.start, b.end, b.diameter, steel,
+                                                   b.cylinder_length));
+  }
   s.particles = generate_packing(scenario.generation, s.geometry, &s.packing, scenario.bars);
   sort_along_morton_curve(s.particles, s.geometry.lo, s.geometry.hi);
   s.concrete_count = s.particles.size();
