@@ -17,6 +17,7 @@
 #include <limits>
 #include <optional>
 #include <sstream>
+#include <utility>
 
 #if defined(_OPENMP)
 #include <omp.h>
@@ -243,7 +244,8 @@ class RunLoop {
  private:
   void restore();
   void check_spacing_or_start();
-  Real step_once();
+  // The load and the test's displacement after the step (a gauge's is read once).
+  std::pair<Real, Real> step_once();
   void checkpoint(std::chrono::steady_clock::time_point now);
   bool checkpoint_due(std::int64_t n, std::chrono::steady_clock::time_point now) const;
   Error with_resume_hint(const Error& e) const;
@@ -361,12 +363,12 @@ void RunLoop::warn_output_volume() const {
 }
 
 // One step and the control's load after it; a failure keeps what the run recorded so far.
-Real RunLoop::step_once() {
+std::pair<Real, Real> RunLoop::step_once() {
   try {
     sim_.step();
-    const Real load = control_.load();
-    check_finite(sim_, load, control_.displacement());
-    return load;
+    const Real load = control_.load(), displacement = control_.displacement();
+    check_finite(sim_, load, displacement);
+    return {load, displacement};
   } catch (const Error& e) {
     try {
       history_.write(out_ / "history.csv");
@@ -390,9 +392,9 @@ bool RunLoop::run(const std::function<void(const Simulation&)>& on_step) {
   loop_start_ = last_checkpoint_ = std::chrono::steady_clock::now();
   session_.signals().loop();
   for (;;) {
-    const Real load = step_once();
+    const auto [load, displacement] = step_once();
     if (on_step) on_step(sim_);
-    const StepView view{sim_, sim_.steps(), load, control_.displacement()};
+    const StepView view{sim_, sim_.steps(), load, displacement};
     try {
       for (RunObserver* o : observers)
         if (o->trigger()(view.step)) o->act(view);

@@ -249,12 +249,15 @@ void History::record(const Simulation& sim) {
   for (const auto& b : sim.pulled_bars())
     if (b.motion.explicit_program()) row.push_back(static_cast<double>(b.motion.segment()));
   if (measures_.several_plates()) row.push_back(measures_.control_displacement());
-  for (const int bar : bent_bars_) {
-    // The largest |N| over the bar's nodes: a stirrup carries force where a crack crosses it.
-    Real most = 0.0;
-    for (std::size_t j = 0; j < sim.nodes().size(); ++j)
-      if (sim.nodes()[j].bar == bar) most = std::max(most, std::abs(sim.node_states()[j].axial_force));
-    row.push_back(most);
+  if (!bent_bars_.empty()) {
+    // The largest |N| over each bar's nodes, in one pass: a stirrup carries force where a crack
+    // crosses it.
+    std::vector<Real> most(sim.specimen().bars.size(), 0.0);
+    for (std::size_t j = 0; j < sim.nodes().size(); ++j) {
+      Real& m = most[static_cast<std::size_t>(sim.nodes()[j].bar)];
+      m = std::max(m, std::abs(sim.node_states()[j].axial_force));
+    }
+    for (const int bar : bent_bars_) row.push_back(most[static_cast<std::size_t>(bar)]);
   }
   rows_.push_back(std::move(row));
 }
