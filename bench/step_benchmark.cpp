@@ -67,7 +67,7 @@ using rcdem::Vec3;
 //                 normal, tangent          2 Vec3 read + write  96
 //                 force_b, torque_b, torque_a  3 Vec3 write   72
 //                 dissipated_damage, dissipated_friction  2 Real write  16
-//   gather (Simulation::gather_forces, BodyContacts CSR):
+//   gather (ConcreteContacts::scatter, BodyContacts CSR):
 //                 entry                    Index x 2 (one per side) read  16
 //                 force_b, torque_b, torque_a  3 Vec3 read    72  (force_b is read by both
 //                                          sides; counted once, the second visit is cached)

@@ -1,9 +1,10 @@
 #pragma once
 // One leap-frog step of the concrete particles (SPEC 6), the bulk of the bodies: isotropic
-// inertia, not driven. The same update as Simulation::integrate()'s general loop (Cundall's local
-// damping, L += T dt, q <- exp(w dt) q, the leap-frog kinetic energy), written on plain scalars
-// so that GCC runs it 8 bodies at a time: the general loop, with its branches for cylinders and
-// pulled bars and its quaternion products through Eigen, was a fifth of an elastic step.
+// inertia, not driven. The same update as Integrator::advance_cylinder (solver/integrator.cpp):
+// Cundall's local damping, L += T dt, q <- exp(w dt) q, the leap-frog kinetic energy; written on
+// plain scalars so that GCC runs it 8 bodies at a time: the general loop, with its branches for
+// cylinders and pulled bars and its quaternion products through Eigen, was a fifth of an elastic
+// step.
 #include <cmath>
 #include <cstdint>
 
