@@ -6,9 +6,11 @@
 #include <cmath>
 #include <limits>
 
+#include "rcdem/config/bar_path.hpp"
 #include "rcdem/config/specimen_geometry.hpp"
 #include "rcdem/config/specimen_registry.hpp"
 #include "rcdem/core/error.hpp"
+#include "rcdem/core/segment_distance.hpp"
 
 namespace rcdem::config {
 
@@ -78,24 +80,6 @@ void check_model_size(const Scenario& s) {
 
 namespace {
 
-// The shortest distance between segments p0-p1 and q0-q1 (closest points clamped to both
-// segments; Ericson, Real-Time Collision Detection, 5.1.9).
-Real segment_distance(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1) {
-  const Vec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
-  const Real a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r), c = d1.dot(r);
-  const Real b = d1.dot(d2), denom = a * e - b * b;
-  Real s = denom > 1e-14 * a * e ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
-  Real t = (b * s + f) / e;
-  if (t < 0.0) {
-    t = 0.0;
-    s = std::clamp(-c / a, 0.0, 1.0);
-  } else if (t > 1.0) {
-    t = 1.0;
-    s = std::clamp((b - c) / a, 0.0, 1.0);
-  }
-  return (p0 + s * d1 - (q0 + t * d2)).norm();
-}
-
 // The shortest distance from segment a-b to the notch's slot, which spans the whole width (y):
 // distance to a convex set along a line is convex in the line's parameter, so a ternary search
 // finds its minimum.
@@ -128,13 +112,16 @@ void check_bar_layout(const Scenario& s) {
       const auto &a = s.bars[i], &b = s.bars[j];
       Real gap = std::numeric_limits<Real>::infinity();
       for (const auto& [a0, a1] : a.chords())
-        for (const auto& [b0, b1] : b.chords()) gap = std::min(gap, segment_distance(a0, a1, b0, b1));
+        for (const auto& [b0, b1] : b.chords()) gap = std::min(gap, closest_points(a0, a1, b0, b1).distance);
       const Real radii = 0.5 * (a.diameter + b.diameter);
-      if (gap < radii)
+      const Real tolerance = bar_touch_tolerance(a.diameter, b.diameter);
+      if (gap < radii - tolerance)
         fail(
             "{}: bars '{}' and '{}' overlap: their axes come {:.4g} m close, less than the sum "
-            "of their radii ({:.4g} m); expected separate bars (move or thin one of them)",
-            key_location(s, "bars." + b.name + ".start"), a.name, b.name, gap, radii);
+            "of their radii ({:.4g} m) less {:.2g} m; expected separate bars, or touching ones "
+            "(axes {:.4g} m apart, within {:.2g} m), which are tied (move or thin one of them)",
+            key_location(s, "bars." + b.name + (b.bent() ? ".path" : ".start")), a.name, b.name,
+            gap, radii, tolerance, radii, tolerance);
     }
   const SpecimenGeometry g = specimen_geometry(s);
   if (!g.notch.present()) return;

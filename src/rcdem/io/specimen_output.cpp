@@ -32,6 +32,7 @@ nlohmann::ordered_json specimen_summary(const Scenario& scenario, const Specimen
   j["interface_contacts"] = interface_contacts;
   j["bars"] = s.bars.size();
   j["cylinders"] = cylinders;
+  if (!s.ties.empty()) j["bar_ties"] = s.ties.size();  // where two bars touch
   // The paper counts contacts per particle as contacts / particles (153,165 / 23,855 = 6.4).
   j["contacts_per_particle"] = n > 0 ? static_cast<Real>(c.contact_count()) / n : 0.0;
   j["local_points_per_contact"] = c.contact_count() > 0 ? static_cast<Real>(c.point_count()) /

@@ -68,28 +68,51 @@ NodeStiffness node_stiffness(Real length_a, Real length_b, Real diameter,
           g * polar_moment / l, steel.yield_strength * area};
 }
 
-InteractionNode make_interaction_node(const CylinderGeometry& a, const Quat& orientation_a,
-                                      const CylinderGeometry& b, const Quat& orientation_b,
-                                      Real diameter, const SteelMaterial& steel) {
-  const Vec3 axis_a = a.axis.normalized();
-  const Vec3 axis_b = b.axis.normalized();
+namespace {
+
+// A node joining material points centre + arm of cylinders A and B (world vectors at t = 0), its
+// axis at t = 0 along axis_a + axis_b, which the cylinders carry as they turn.
+InteractionNode node_between(const CylinderGeometry& a, const Quat& orientation_a,
+                             const Vec3& arm_a, const Vec3& axis_a, const CylinderGeometry& b,
+                             const Quat& orientation_b, const Vec3& arm_b, const Vec3& axis_b,
+                             Real diameter, const SteelMaterial& steel) {
   const Vec3 sum = axis_a + axis_b;
   if (!(sum.norm() > 1e-6)) fail("bar node: consecutive cylinders point in opposite directions");
   const Quat frame0 = orientation_for_axis(sum);  // z = (8) at t = 0
   const Quat to_a = orientation_a.conjugate();
   const Quat to_b = orientation_b.conjugate();
   InteractionNode node;
-  node.arm_a = to_a * (0.5 * a.length * axis_a);
-  node.arm_b = to_b * (-0.5 * b.length * axis_b);
+  node.arm_a = to_a * arm_a;
+  node.arm_b = to_b * arm_b;
   node.axis_a = to_a * axis_a;
   node.axis_b = to_b * axis_b;
   node.frame_a = to_a * frame0;
   node.frame_b = to_b * frame0;
-  const Vec3 end_a = a.centre + 0.5 * a.length * axis_a;
-  const Vec3 start_b = b.centre - 0.5 * b.length * axis_b;
-  node.gap0 = frame0.conjugate() * (start_b - end_a);
+  node.gap0 = frame0.conjugate() * ((b.centre + arm_b) - (a.centre + arm_a));
   node.k = node_stiffness(a.length, b.length, diameter, steel);
   return node;
+}
+
+}  // namespace
+
+InteractionNode make_interaction_node(const CylinderGeometry& a, const Quat& orientation_a,
+                                      const CylinderGeometry& b, const Quat& orientation_b,
+                                      Real diameter, const SteelMaterial& steel) {
+  const Vec3 axis_a = a.axis.normalized();
+  const Vec3 axis_b = b.axis.normalized();
+  return node_between(a, orientation_a, 0.5 * a.length * axis_a, axis_a, b, orientation_b,
+                      -0.5 * b.length * axis_b, axis_b, diameter, steel);
+}
+
+InteractionNode make_interaction_node_at(const CylinderGeometry& a, const Quat& orientation_a,
+                                         const Vec3& point_a, const CylinderGeometry& b,
+                                         const Quat& orientation_b, const Vec3& point_b,
+                                         Real diameter, const SteelMaterial& steel) {
+  const Vec3 across = point_b - point_a;
+  if (!(across.norm() > 0.0)) fail("bar tie: the two bars' axes meet (expected touching bars)");
+  const Vec3 n = across.normalized();
+  return node_between(a, orientation_a, point_a - a.centre, n, b, orientation_b,
+                      point_b - b.centre, n, diameter, steel);
 }
 
 NodeGeometry node_geometry(const InteractionNode& node, const Vec3& x_a, const Quat& q_a,

@@ -115,6 +115,15 @@ void archive_fields(Record& r, F& f) {
   r.put(f.dissipated);
 }
 
+// A node joining the material points of A and B at point_a and point_b (world, t = 0, distinct):
+// a tie between two bars that touch (reinforcement/bar_ties.hpp). Its axis is the line from
+// point_a to point_b, carried by both cylinders as (8) carries a bar node's; its springs (9) are
+// those of a bar of `diameter` between cylinders of A's and B's lengths.
+InteractionNode make_interaction_node_at(const CylinderGeometry& a, const Quat& orientation_a,
+                                         const Vec3& point_a, const CylinderGeometry& b,
+                                         const Quat& orientation_b, const Vec3& point_b,
+                                         Real diameter, const SteelMaterial& steel);
+
 // (7)-(8) for cylinders at x_a, q_a and x_b, q_b.
 NodeGeometry node_geometry(const InteractionNode& node, const Vec3& x_a, const Quat& q_a,
                            const Vec3& x_b, const Quat& q_b);

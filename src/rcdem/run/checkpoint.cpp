@@ -113,6 +113,8 @@ std::uint64_t specimen_fingerprint(const Simulation& s) {
                        static_cast<Index>(s.interfaces().size()),
                        static_cast<Index>(s.pulled_bars().size())};
   for (const Index c : counts) o.u64(static_cast<std::uint64_t>(c));
+  // Only where there are ties, so that the fingerprints of specimens without any are unchanged.
+  if (s.ties().size() > 0) o.u64(static_cast<std::uint64_t>(s.ties().size()));
   SaveRecord r{o};
   const Bodies& b = s.bodies();
   for (Index i = 0; i < b.size(); ++i) {

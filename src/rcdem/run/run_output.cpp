@@ -213,6 +213,8 @@ History::History(const Simulation& sim, const Scenario& sc)
       bent_bars_.push_back(static_cast<int>(k));
       columns_.push_back(sc.bars[k].name + "_max_axial_force_N");
     }
+  ties_ = sim.ties().size() > 0;
+  if (ties_) columns_.emplace_back("max_tie_force_N");
   const auto plates = sc.load_plates();
   displacement_column_ = !sc.displacement_gauge.empty() ? "gauge_" + sc.displacement_gauge + "_m"
                          : plates.size() > 1           ? "control_displacement_m"
@@ -258,6 +260,11 @@ void History::record(const Simulation& sim) {
       m = std::max(m, std::abs(sim.node_states()[j].axial_force));
     }
     for (const int bar : bent_bars_) row.push_back(most[static_cast<std::size_t>(bar)]);
+  }
+  if (ties_) {
+    Real most = 0.0;  // the largest force a tie carries, |N a_c + V|
+    for (const NodeForces& f : sim.ties().forces()) most = std::max(most, f.force_a.norm());
+    row.push_back(most);
   }
   rows_.push_back(std::move(row));
 }

@@ -67,6 +67,7 @@ class History {
   bool bars_ = false;
   bool adaptive_rate_ = false;  // a loading_rate_factor column
   std::vector<int> bent_bars_;  // the bent bars' indices: a NAME_max_axial_force_N column each
+  bool ties_ = false;           // a max_tie_force_N column
   std::vector<std::string> columns_;
   std::vector<std::vector<double>> rows_;
 };

@@ -4,17 +4,31 @@
 
 namespace rcdem {
 
-InteractionNodes::InteractionNodes(const Specimen& specimen) {
+InteractionNodes::InteractionNodes(const Specimen& specimen, NodeSet set) : set_(set) {
+  std::vector<Index> first_body;  // each bar's first cylinder as a body
   Index first = specimen.concrete();
-  for (std::size_t k = 0; k < specimen.bars.size(); ++k) {
-    const Bar& bar = specimen.bars[k];
-    const std::vector<Quat> reference(bar.cylinders.size(), Quat::Identity());
-    const std::vector<InteractionNode> nodes = make_bar_nodes(bar, reference);
-    for (std::size_t j = 0; j < nodes.size(); ++j) {
-      nodes_.push_back(nodes[j]);
-      refs_.push_back({first + bar.nodes[j][0], first + bar.nodes[j][1], static_cast<int>(k)});
-    }
+  for (const Bar& bar : specimen.bars) {
+    first_body.push_back(first);
     first += static_cast<Index>(bar.cylinders.size());
+  }
+  if (set == NodeSet::Ties) {
+    for (const BarTie& tie : specimen.ties) {
+      nodes_.push_back(make_tie_node(tie, specimen.bars, Quat::Identity(), Quat::Identity()));
+      refs_.push_back({first_body[static_cast<std::size_t>(tie.bar_a)] + tie.cylinder_a,
+                       first_body[static_cast<std::size_t>(tie.bar_b)] + tie.cylinder_b,
+                       tie.bar_a});
+    }
+  } else {
+    for (std::size_t k = 0; k < specimen.bars.size(); ++k) {
+      const Bar& bar = specimen.bars[k];
+      const std::vector<Quat> reference(bar.cylinders.size(), Quat::Identity());
+      const std::vector<InteractionNode> nodes = make_bar_nodes(bar, reference);
+      for (std::size_t j = 0; j < nodes.size(); ++j) {
+        nodes_.push_back(nodes[j]);
+        refs_.push_back(
+            {first_body[k] + bar.nodes[j][0], first_body[k] + bar.nodes[j][1], static_cast<int>(k)});
+      }
+    }
   }
   states_.assign(nodes_.size(), NodeState{});
   forces_.assign(nodes_.size(), NodeForces{});

@@ -40,7 +40,8 @@ Simulation::Simulation(const Scenario& sc, Specimen specimen)
       kinematics_(bodies_),
       prescribed_(bodies_.size()),
       concrete_(sc, specimen_.contacts, bodies_, kinematics_),
-      nodes_(specimen_),
+      nodes_(specimen_, NodeSet::Bars),
+      ties_(specimen_, NodeSet::Ties),
       pulled_(sc, specimen_, prescribed_),
       plates_(sc.plates, specimen_.geometry, specimen_.boundary, bodies_, sc.contact),
       integrator_(bodies_, prescribed_, sc.solver.damping),
@@ -53,11 +54,13 @@ Simulation::Simulation(const Scenario& sc, Specimen specimen)
   parts_.push_back(&nodes_);
   parts_.push_back(&pulled_);
   parts_.push_back(&plates_);
+  parts_.push_back(&ties_);
   ledger_order_.push_back(&concrete_);
   ledger_order_.push_back(&plates_);
   for (const auto& p : interfaces_) ledger_order_.push_back(p.get());
   ledger_order_.push_back(&nodes_);
   ledger_order_.push_back(&pulled_);
+  ledger_order_.push_back(&ties_);
   for (StepPart* p : parts_)
     for (Index t = 0; t < p->task_count(); ++t) tasks_.emplace_back(p, t);
   compute_stable_time_step(sc.solver.added_mass_limit, sc.solver.estimate, sc.source.string());

@@ -98,6 +98,8 @@ class Simulation {
   const std::vector<InteractionNode>& node_constants() const { return nodes_.constants(); }
   const std::vector<NodeState>& node_states() const { return nodes_.states(); }
   const std::vector<NodeForces>& node_forces() const { return nodes_.forces(); }
+  // The ties where two bars touch (reinforcement/bar_ties.hpp), in the specimen's order of ties.
+  const InteractionNodes& ties() const { return ties_; }
   // Each bar's interface, in the specimen's order of interfaces.
   const std::vector<std::unique_ptr<BarInterface>>& interfaces() const { return interfaces_; }
   Index yielded_nodes() const;
@@ -137,6 +139,7 @@ class Simulation {
   ConcreteContacts concrete_;
   std::vector<std::unique_ptr<BarInterface>> interfaces_;
   InteractionNodes nodes_;
+  InteractionNodes ties_;  // where two bars touch
   PulledBars pulled_;
   PlateSet plates_;
   // The step's order (evaluation, scatter, drive), and the ledger's: the dissipation and strain

@@ -22,6 +22,7 @@ void Simulation::serialize(Archive& ar, Self& s) {
   InteractionNodes::serialize(ar, s.nodes_);
   PlateSet::serialize(ar, s.plates_);
   PulledBars::serialize(ar, s.pulled_);
+  InteractionNodes::serialize(ar, s.ties_);
   auto& e = s.energy_;
   ar.record("solver", s.time_, s.steps_, s.time_step_.dt, s.integrator_.damping_ref(),
             e.external_work, e.strain, e.kinetic, e.damage, e.friction, e.damping, e.plastic);

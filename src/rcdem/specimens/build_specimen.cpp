@@ -36,6 +36,7 @@ Specimen build_specimen(const Scenario& scenario) {
                               : build_straight_bar(b.start, b.end, b.diameter, steel,
                                                    b.cylinder_length));
   }
+  s.ties = find_bar_ties(s.bars);
   s.particles = generate_packing(scenario.generation, s.geometry, &s.packing, scenario.bars);
   sort_along_morton_curve(s.particles, s.geometry.lo, s.geometry.hi);
   s.concrete_count = s.particles.size();

@@ -5,6 +5,7 @@
 #include "rcdem/config/specimen_geometry.hpp"
 #include "rcdem/packing/generator.hpp"
 #include "rcdem/reinforcement/bar_builder.hpp"
+#include "rcdem/reinforcement/bar_ties.hpp"
 #include "rcdem/state/contact_network.hpp"
 #include "rcdem/state/particles.hpp"
 #include "rcdem/tessellation/contact_network_builder.hpp"
@@ -21,6 +22,7 @@ struct Specimen {
   Index concrete() const { return concrete_count < 0 ? particles.size() : concrete_count; }
   ContactNetwork contacts;                    // concrete-concrete
   std::vector<Bar> bars;                      // SPEC 7
+  std::vector<BarTie> ties;                   // where two bars touch (reinforcement/bar_ties.hpp)
   SteelSpheres steel;                         // the interface spheres (SPEC 8)
   std::vector<InterfaceContacts> interfaces;  // one per bar
   BoundaryFaces boundary;
