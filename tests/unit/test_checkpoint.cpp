@@ -157,8 +157,12 @@ TEST(Checkpoint, RestoredRunContinuesBitwise) {
   const Scenario adaptive = pull_out(
       "adaptive_rate = true\nkinetic_ratio = 0.99\nrate_doubling_time = 1e-5\n"
       "damage_work_ratio = 1e9\n");
-  for (const Scenario& sc : {small_run(), pull_out(), adaptive}) {
-    SCOPED_TRACE(sc.source.string());
+  // The fourth with a bar across the pulled one, touching it and so tied (docs/model.md 14).
+  const Scenario tied = pull_out(
+      "[bars.cross]\nstart = [0.02, 0.004, 0.027]\nend = [0.02, 0.036, 0.027]\ndiameter = 0.006\n"
+      "f_y = 5.0e8\ninterface = \"NL-B\"\n");
+  for (const Scenario& sc : {small_run(), pull_out(), adaptive, tied}) {
+    SCOPED_TRACE(sc.source.string() + (sc.bars.size() > 1 ? " (tied)" : ""));
     const Specimen specimen = build_specimen(sc);
     Simulation a(sc, specimen);
     for (int i = 0; i < 300; ++i) a.step();
@@ -189,8 +193,13 @@ TEST(Checkpoint, RestoredRunContinuesBitwise) {
     }
     EXPECT_EQ(a.loading_rate_factor(), b.loading_rate_factor());
     if (sc.loading_rate.adaptive) EXPECT_GT(a.loading_rate_factor(), 1.0);
-    // Something happened worth keeping: damage, node forces, plate reactions.
+    // Something happened worth keeping: damage, node forces, plate reactions, a tie's force.
     EXPECT_GT(a.energy().damage + a.energy().friction, 0.0);
+    if (sc.bars.size() > 1) {
+      ASSERT_EQ(a.ties().size(), 1U);
+      EXPECT_GT(a.ties().forces()[0].force_a.norm(), 0.0);
+      EXPECT_EQ(a.ties().forces()[0].force_a, b.ties().forces()[0].force_a);
+    }
   }
 }
 
