@@ -6,7 +6,8 @@ puts on a machine, without installing it here):
   * declares the Python packages its tools need beside the shared libraries;
   * holds the binary, its tools, the examples, the docs and a man page with every command;
   * runs from there in a clean directory: `--version`, a short run of a packaged example whose
-    plot is drawn by the packaged tool, and a built-in study found among the packaged examples.
+    plot is drawn by the packaged tool, and a built-in study found among the packaged examples;
+  * `import rcdem` from its Python package steps a packaged example.
 
 usage: check_package.py RCDEM_BINARY SOURCE_DIR BUILD_DIR
 """
@@ -64,5 +65,15 @@ with tempfile.TemporaryDirectory() as tmp:
                        capture_output=True, text=True, cwd=work)
     check(r.returncode == 1 and os.path.join(share, "examples/three_point_bending/study/quick")
           in r.stderr, "the built-in study's scenarios are the packaged ones")
+    # `import rcdem` from the package alone (not the build tree), in a clean directory.
+    site = os.path.join(root, "usr/lib/python3/dist-packages")
+    code = ("import rcdem, sys; sc = rcdem.Scenario.load(sys.argv[1]).set('stop.steps', 50); "
+            "sim = rcdem.Simulation(sc); sim.step(50); print(rcdem.__file__, sim.steps)")
+    r = subprocess.run(["/usr/bin/python3", "-c", code,
+                        os.path.join(share, "examples/uniaxial/compression.toml")],
+                       capture_output=True, text=True, cwd=work, timeout=600,
+                       env=dict(os.environ, PYTHONPATH=site))
+    check(r.returncode == 0 and r.stdout.startswith(site) and r.stdout.split()[-1] == "50",
+          f"import rcdem from the package steps a packaged example ({(r.stdout + r.stderr)[-200:]})")
 
 checks.finish()

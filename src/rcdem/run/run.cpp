@@ -248,6 +248,7 @@ class RunLoop {
   std::pair<Real, Real> step_once();
   void checkpoint(std::chrono::steady_clock::time_point now);
   bool checkpoint_due(std::int64_t n, std::chrono::steady_clock::time_point now) const;
+  RunDecision decide(std::int64_t step);
   Error with_resume_hint(const Error& e) const;
   void write_final_outputs();
   nlohmann::ordered_json summary_json(const RunSummary& r, double wall, double loop_s);
@@ -406,9 +407,14 @@ bool RunLoop::run(const std::function<void(const Simulation&)>& on_step) {
     // After the stop rules, so that the last step's line is printed before the loop ends.
     if (progress.trigger()(view.step)) progress.act(view);
     if (!stop_reason_.empty()) break;
+    const RunDecision decision = decide(view.step);
+    if (decision == RunDecision::Stop) {
+      stop_reason_ = "callback";
+      break;
+    }
     const auto now = std::chrono::steady_clock::now();
     if (checkpoint_due(view.step, now)) checkpoint(now);
-    if ((signal_ = pending_stop_signal()) != 0) {
+    if ((signal_ = pending_stop_signal()) != 0 || decision == RunDecision::Interrupt) {
       // Interrupted: the state after this whole step is saved, with what the run has so far.
       if (checkpointed_step_ != view.step) checkpoint(now);
       progress.close();
@@ -417,6 +423,11 @@ bool RunLoop::run(const std::function<void(const Simulation&)>& on_step) {
   }
   progress.close();
   return true;
+}
+
+RunDecision RunLoop::decide(std::int64_t step) {
+  if (!opt_.decide || step % opt_.decide_every != 0) return RunDecision::Continue;
+  return opt_.decide(sim_);
 }
 
 bool RunLoop::checkpoint_due(std::int64_t n, std::chrono::steady_clock::time_point now) const {
@@ -481,7 +492,8 @@ RunSummary RunLoop::interrupted() {
     throw with_resume_hint(e);
   }
   auto& session = session_.end("interrupted");
-  session["signal"] = signal_name(signal_);
+  const std::string by = signal_ != 0 ? signal_name(signal_) : "the caller";
+  session["signal"] = signal_ != 0 ? signal_name(signal_) : "none (the caller's callback)";
   session["wall_seconds"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - session_.wall_start())
           .count();
@@ -489,8 +501,8 @@ RunSummary RunLoop::interrupted() {
   fmt::print(stderr,
              "rcdem: interrupted by {} at step {} (t = {:.6g} s); checkpoint {} written; resume "
              "with: rcdem run --resume {}\n",
-             signal_name(signal_), sim_.steps(), sim_.time(),
-             last_checkpoint_file_.filename().string(), out_.string());
+             by, sim_.steps(), sim_.time(), last_checkpoint_file_.filename().string(),
+             out_.string());
   RunSummary r = partial_summary();
   r.stop_reason = "interrupted";
   r.signal = signal_;
@@ -607,8 +619,20 @@ RunSummary RunLoop::finish() {
   return r;
 }
 
-// The specimen and its solver, the set-up's failures named after the scenario; the first files
-// are written only once the set-up has passed every check, so a refused run leaves nothing.
+// The run's first files and the session's start, once the set-up has passed every check, so a
+// refused run leaves nothing.
+void start(const Scenario& sc, const fs::path& out, const RunOptions& opt, RunSession& session,
+           const Simulation& sim) {
+  if (!opt.resume) {
+    io::write_file_atomically(out / "scenario.toml", sc.text);
+    io::write_particles_vtu(out / "particles_initial.vtu", sim.specimen(), sc.output.binary_vtu);
+  }
+  session.started();
+  if (opt.on_started) opt.on_started();
+  if (!Progress::quiet_default()) print_set_up(sc, sim);
+}
+
+// The specimen and its solver, the set-up's failures named after the scenario.
 void build(const Scenario& sc, const fs::path& out, const RunOptions& opt, RunSession& session,
            std::optional<Simulation>& sim) {
   try {
@@ -616,13 +640,21 @@ void build(const Scenario& sc, const fs::path& out, const RunOptions& opt, RunSe
   } catch (const Error& e) {
     rethrow_naming(sc.source.string(), e);
   }
-  if (!opt.resume) {
-    io::write_file_atomically(out / "scenario.toml", sc.text);
-    io::write_particles_vtu(out / "particles_initial.vtu", sim->specimen(), sc.output.binary_vtu);
+  start(sc, out, opt, session, *sim);
+}
+
+// The loop over a built simulation, a failure recorded in the manifest once the run has started.
+template <class Body>
+RunSummary guarded(RunSession& session, Body&& body) {
+  try {
+    return body();
+  } catch (const Error& e) {
+    session.record_failure(e.what());
+    throw;
+  } catch (const std::exception& e) {
+    session.record_failure(std::string("internal error: ") + e.what());
+    throw;
   }
-  session.started();
-  if (opt.on_started) opt.on_started();
-  if (!Progress::quiet_default()) print_set_up(sc, *sim);
 }
 
 }  // namespace
@@ -631,18 +663,23 @@ RunSummary run_scenario(const Scenario& sc, const fs::path& out, const RunOption
                         const std::function<void(const Simulation&)>& on_step) {
   validate_run(sc);
   RunSession session(sc, out, opt);
-  try {
+  return guarded(session, [&] {
     std::optional<Simulation> sim;
     build(sc, out, opt, session, sim);
     RunLoop loop(sc, out, opt, session, *sim);
     return loop.run(on_step) ? loop.finish() : loop.interrupted();
-  } catch (const Error& e) {
-    session.record_failure(e.what());
-    throw;
-  } catch (const std::exception& e) {
-    session.record_failure(std::string("internal error: ") + e.what());
-    throw;
-  }
+  });
+}
+
+RunSummary run_simulation(const Scenario& sc, Simulation& sim, const fs::path& out,
+                          const RunOptions& opt) {
+  validate_run(sc);
+  RunSession session(sc, out, opt);
+  return guarded(session, [&] {
+    start(sc, out, opt, session, sim);
+    RunLoop loop(sc, out, opt, session, sim);
+    return loop.run({}) ? loop.finish() : loop.interrupted();
+  });
 }
 
 }  // namespace rcdem

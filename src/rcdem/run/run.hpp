@@ -25,6 +25,13 @@ struct RunSummary {
   std::filesystem::path checkpoint;  // the last checkpoint written, if any
 };
 
+// What a caller's hook decides after a step (RunOptions::decide).
+enum class RunDecision {
+  Continue,
+  Stop,       // the run ends as if a stop rule had triggered (stop_reason "callback")
+  Interrupt,  // as a signal does: a checkpoint, outputs so far, resumable with --resume
+};
+
 // How a run is kept safe (docs/checkpoint.md). The defaults are those of library callers
 // (calibration, the study's in-process runs): a manifest, no checkpoint, signals untouched.
 // `rcdem run` checkpoints every 10 minutes of wall time and on SIGINT/SIGTERM.
@@ -52,6 +59,11 @@ struct RunOptions {
   // run has started cleanly (io::OutputDirectory::commit).
   std::function<void()> on_started;
   std::vector<std::string> command;  // the command line, for the manifest
+  // Called every `decide_every` steps, after the step's outputs and stop rules, with the
+  // simulation, which it may change (a plate's velocity); Python's run callback. A run with one
+  // may be interrupted by it, so it keeps the directory's lock as a checkpointing run does.
+  std::function<RunDecision(Simulation&)> decide;
+  std::int64_t decide_every = 1;
 };
 
 // Checks that the scenario describes a run that can end: plates, a control plate where a rule
@@ -65,6 +77,11 @@ RunSummary run_scenario(const Scenario& scenario, const std::filesystem::path& o
 RunSummary run_scenario(const Scenario& scenario, const std::filesystem::path& out,
                         const RunOptions& options,
                         const std::function<void(const Simulation&)>& on_step = {});
+
+// The same with a simulation the caller built from `scenario` (and may have stepped, or restored:
+// with options.resume its state is replaced by the newest checkpoint's in `out`).
+RunSummary run_simulation(const Scenario& scenario, Simulation& sim,
+                          const std::filesystem::path& out, const RunOptions& options);
 
 // The scenario of the run in `dir`, for --resume: DIR/scenario.toml (the scenario as run), its
 // includes resolved from where the original file was (manifest.json), named as it was. Refuses a

@@ -15,7 +15,7 @@ RunSession::RunSession(const Scenario& sc, const fs::path& out, const RunOptions
       opt_(opt),
       wall_start_(std::chrono::steady_clock::now()),
       checkpoints_(opt.resume || opt.handle_signals || opt.checkpoint_every_steps > 0 ||
-                   opt.checkpoint_every_seconds > 0.0),
+                   opt.checkpoint_every_seconds > 0.0 || static_cast<bool>(opt.decide)),
       lock_(out, checkpoints_ && !opt.lock_held),
       signals_(opt.handle_signals, out / "run.lock", opt.resume),
       manifest_(out, opt.manifest),
