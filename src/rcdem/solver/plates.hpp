@@ -44,11 +44,12 @@ struct Plate {
   Index contacts_active = 0;
 
   // From now on a constant velocity (a program's plate leaves its program), reached over the ramp
-  // time from t = 0 as at the start: a held plate (0) stops at once once that time has passed.
+  // time from t = 0 as at the start: once that time has passed, the change is immediate (a held
+  // plate, 0, stops at once). The load keeps the sign the test began with (`direction`), so that
+  // unloading reads as a falling load, not a negative one.
   void set_velocity(Real v) {
     velocity = v;
     motion = LoadingProgram(v, ramp_time);
-    if (v != 0.0) direction = v > 0.0 ? 1.0 : -1.0;
   }
   // The reaction along the axis, signed so that it is positive when it resists the plate's
   // motion in `direction`.
