@@ -80,7 +80,8 @@ class Simulation(_Simulation):
     every step (the arrays do not move): position, position0, velocity (writable),
     angular_velocity, orientation (x, y, z, w), force, torque, mass, radius per body (the concrete
     particles first, then the bars' cylinders); point_damage per concrete local point (read-only,
-    strided into the point records); contact_force per contact, node_axial_force per bar node.
+    strided into the point records), point_opening (its accumulated normal displacement, m,
+    opening positive); contact_force per contact, node_axial_force per bar node.
     Copies: contact_particles. Dicts built on each read: energies, gauges, plates.
     """
 
@@ -99,21 +100,23 @@ class Simulation(_Simulation):
         sim._resume_dir = os.fspath(directory)
         return sim
 
-    def run(self, out=None, every=1, callback=None, checkpoint_every=0):
+    def run(self, out=None, every=1, callback=None, checkpoint_every=0, until=None):
         """Runs to the scenario's stop rules as `rcdem run` does, writing its outputs into `out`
         (history.csv, summary.json, snapshots, ...); returns summary.json as a dict.
 
         callback(sim), every `every` steps after the step's outputs and stop rules, may read and
         change the simulation (set_plate_velocity) and returns None or True to go on, False to
         stop the run (stop_reason "callback"), or rcdem.INTERRUPT to interrupt it resumably.
-        checkpoint_every: a checkpoint every that many steps (0: only on an interrupt)."""
+        checkpoint_every: a checkpoint every that many steps (0: only on an interrupt).
+        until: the run also ends (stop_reason "until") at this step (an int) or simulation
+        time (a float, s), whichever of it and the scenario's stop rules comes first."""
         resume = False
         if out is None:
             if self._resume_dir is None:
                 raise Error("run: no output directory given (out=...)")
             out, resume = self._resume_dir, True
             self._resume_dir = None
-        return super().run(os.fspath(out), every, callback, checkpoint_every, resume)
+        return super().run(os.fspath(out), every, callback, checkpoint_every, resume, until)
 
     def __repr__(self):
         return (f"rcdem.Simulation({self.body_count} bodies, step {self.steps}, "

@@ -19,6 +19,7 @@
 #include "rcdem/run/checkpoint.hpp"
 #include "rcdem/run/run.hpp"
 #include "rcdem/run/run_manifest.hpp"
+#include "rcdem/run/run_output.hpp"
 #include "rcdem/solver/simulation.hpp"
 #include "rcdem/solver/test_measures.hpp"
 #include "rcdem/specimens/specimen.hpp"
@@ -90,7 +91,12 @@ class PySimulation {
   }
 
   py::dict run(const fs::path& out, std::int64_t every, const py::object& callback,
-               std::int64_t checkpoint_every, bool resume);
+               std::int64_t checkpoint_every, bool resume, const py::object& until);
+  void write_snapshot(const fs::path& dir, bool binary, bool facets) {
+    py::gil_scoped_release release;
+    fs::create_directories(dir);
+    io::SnapshotWriter(dir, binary, facets).write(*sim_);
+  }
 
  private:
   Scenario scenario_;
@@ -110,17 +116,41 @@ RunDecision decision_of(const py::object& r) {
   return r.cast<bool>() ? RunDecision::Continue : RunDecision::Stop;
 }
 
+// `until`: None, a step count (int) or a simulation time (float, s) at which the run ends.
+struct RunEnd {
+  std::int64_t step = -1;
+  Real time = -1.0;
+  explicit RunEnd(const py::object& until) {
+    if (until.is_none()) return;
+    if (py::isinstance<py::int_>(until)) {
+      step = until.cast<std::int64_t>();
+      if (step < 0) fail("run: until = {} steps: expected 0 or more", step);
+    } else {
+      time = until.cast<Real>();
+      if (!(time >= 0.0)) fail("run: until = {} s: expected a time of 0 or more", time);
+    }
+  }
+  bool set() const { return step >= 0 || time >= 0.0; }
+  bool reached(const Simulation& s) const {
+    return (step >= 0 && s.steps() >= step) || (time >= 0.0 && s.time() >= time);
+  }
+};
+
 py::dict PySimulation::run(const fs::path& out, std::int64_t every, const py::object& callback,
-                           std::int64_t checkpoint_every, bool resume) {
+                           std::int64_t checkpoint_every, bool resume, const py::object& until) {
   if (every < 1) fail("run: every = {}: expected a step count of 1 or more", every);
+  const RunEnd end(until);
   fs::create_directories(out);
   RunOptions opt;
   opt.resume = resume;
   opt.checkpoint_every_steps = checkpoint_every;
   opt.command = {"python", "rcdem.Simulation.run"};
-  if (!callback.is_none()) {
-    opt.decide_every = every;
-    opt.decide = [&](Simulation&) {
+  if (!callback.is_none() || end.set()) {
+    // Every step when there is an end to check (a C++ test), Python only every `every` steps.
+    opt.decide_every = end.set() ? 1 : every;
+    opt.decide = [&, end](Simulation& s) {
+      if (end.reached(s)) return RunDecision::Until;
+      if (callback.is_none() || s.steps() % every != 0) return RunDecision::Continue;
       py::gil_scoped_acquire acquire;
       return decision_of(callback(py::cast(this, py::return_value_policy::reference)));
     };
@@ -195,6 +225,13 @@ void bind_state(py::class_<PySimulation>& c) {
     return view(d, static_cast<py::ssize_t>(cs.point.size()), {},
                 static_cast<py::ssize_t>(sizeof(LocalPointRecord)), self, false);
   });
+  c.def_property_readonly("point_opening", [](py::object self) {
+    Simulation& sim = self.cast<PySimulation&>().sim();
+    const ContactState& cs = sim.contacts();
+    const LocalPointRecord* r = cs.point.data();
+    return view(&r[0].history.un, static_cast<py::ssize_t>(cs.point.size()), {},
+                static_cast<py::ssize_t>(sizeof(LocalPointRecord)), self, false);
+  });
   c.def_property_readonly("contact_particles", [](py::object self) {
     const ContactNetwork& net = self.cast<PySimulation&>().sim().specimen().contacts;
     py::array_t<Index> out({static_cast<py::ssize_t>(net.contact_count()), py::ssize_t{2}});
@@ -264,7 +301,9 @@ void bind_simulation(py::module_& m) {
       .def("step", &PySimulation::step, py::arg("n") = 1)
       .def("run", &PySimulation::run, py::arg("out"), py::arg("every") = 1,
            py::arg("callback") = py::none(), py::arg("checkpoint_every") = 0,
-           py::arg("resume") = false)
+           py::arg("resume") = false, py::arg("until") = py::none())
+      .def("write_snapshot", &PySimulation::write_snapshot, py::arg("directory"),
+           py::arg("binary") = true, py::arg("facets") = true)
       .def_property_readonly("time", [](PySimulation& s) { return s.sim().time(); })
       .def_property_readonly("steps", [](PySimulation& s) { return s.sim().steps(); })
       .def_property_readonly("time_step", [](PySimulation& s) { return s.sim().time_step(); })

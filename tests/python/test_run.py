@@ -110,3 +110,14 @@ def test_load_study(tmp_path):
     assert len(study.peak_loads) == 2
     assert {r["directory"] for r in study.peak_loads} == {"cube_damping=0.1", "cube_damping=0.2"}
     assert set(study.runs) == {"cases/cube_damping=0.1", "cases/cube_damping=0.2"}
+
+
+def test_until_a_step_or_a_time(small, tmp_path):
+    s = rcdem.Simulation(small).run(tmp_path / "steps", until=123)
+    assert s["stop_reason"] == "until" and s["steps"] == 123
+    sim = rcdem.Simulation(small)
+    t_end = 50.5 * sim.time_step
+    s = sim.run(tmp_path / "time", until=t_end, every=7, callback=lambda x: None)
+    assert s["stop_reason"] == "until" and s["steps"] == 51  # the first step at or past it
+    with pytest.raises(rcdem.Error, match="until"):
+        rcdem.Simulation(small).run(tmp_path / "bad", until=-1)

@@ -1,4 +1,5 @@
 """rcdem.Simulation: stepping, numpy views without copies, measures, checkpoints, the GIL."""
+import os
 import threading
 
 import numpy as np
@@ -106,3 +107,16 @@ def test_stepping_releases_the_gil(small):
     worker.join()
     assert sim.steps == 3000
     assert ticks > 1000  # Python ran while the steps did
+
+
+def test_point_opening_and_snapshots_on_demand(small, tmp_path):
+    sim = rcdem.Simulation(small)
+    sim.step(400)
+    opening, damage = sim.point_opening, sim.point_damage
+    assert opening.strides == (128,) and opening.shape == damage.shape
+    assert np.all(np.isfinite(opening))
+    assert opening[damage > 0].max() > 0  # damaged points have opened (or slid)
+    sim.write_snapshot(tmp_path / "snap")
+    names = sorted(os.listdir(tmp_path / "snap" / "snapshots"))
+    assert any(n.startswith("particles_000000400") for n in names)
+    assert os.path.exists(tmp_path / "snap" / "particles.pvd")

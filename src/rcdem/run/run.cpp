@@ -408,8 +408,8 @@ bool RunLoop::run(const std::function<void(const Simulation&)>& on_step) {
     if (progress.trigger()(view.step)) progress.act(view);
     if (!stop_reason_.empty()) break;
     const RunDecision decision = decide(view.step);
-    if (decision == RunDecision::Stop) {
-      stop_reason_ = "callback";
+    if (decision == RunDecision::Stop || decision == RunDecision::Until) {
+      stop_reason_ = decision == RunDecision::Stop ? "callback" : "until";
       break;
     }
     const auto now = std::chrono::steady_clock::now();

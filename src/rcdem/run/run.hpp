@@ -29,6 +29,7 @@ struct RunSummary {
 enum class RunDecision {
   Continue,
   Stop,       // the run ends as if a stop rule had triggered (stop_reason "callback")
+  Until,      // the same, the caller's end reached (stop_reason "until")
   Interrupt,  // as a signal does: a checkpoint, outputs so far, resumable with --resume
 };
 
