@@ -293,6 +293,26 @@ void bind_measures(py::class_<PySimulation>& c) {
         fail("set_plate_velocity: no plate '{}'", name);
       },
       py::arg("name"), py::arg("velocity"));
+  c.def(
+      "set_pull_velocity",
+      [](PySimulation& s, const std::string& name, Real v) {
+        for (PulledBar& b : s.sim().pulled_bars())
+          if (b.name == name) return b.set_speed(v);
+        fail("set_pull_velocity: no pulled bar '{}'", name);
+      },
+      py::arg("name"), py::arg("velocity"));
+  c.def_property_readonly("pulled_bars", [](PySimulation& s) {
+    py::dict d;
+    for (const PulledBar& b : s.sim().pulled_bars()) {
+      py::dict q;
+      q["displacement"] = b.displacement;
+      q["load"] = b.load();
+      q["work"] = b.work;
+      q["velocity"] = b.speed;
+      d[py::str(b.name)] = q;
+    }
+    return d;
+  });
 }
 
 void bind_simulation(py::module_& m) {

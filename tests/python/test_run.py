@@ -121,3 +121,22 @@ def test_until_a_step_or_a_time(small, tmp_path):
     assert s["stop_reason"] == "until" and s["steps"] == 51  # the first step at or past it
     with pytest.raises(rcdem.Error, match="until"):
         rcdem.Simulation(small).run(tmp_path / "bad", until=-1)
+
+
+def test_a_callback_holds_a_pulled_bar(tmp_path):
+    from conftest import SOURCE
+    sc = rcdem.Scenario.load(os.path.join(SOURCE, "examples", "pull_out", "NL-B.toml"))
+    sc.set("output.snapshots", 0)
+    held = {}
+
+    def hold(sim):
+        if sim.steps == 600:
+            sim.set_pull_velocity("bar", 0.0)
+        if sim.steps >= 700:
+            held[sim.steps] = sim.pulled_bars["bar"]["displacement"]
+
+    s = rcdem.Simulation(sc).run(tmp_path / "run", every=100, callback=hold, until=900)
+    assert s["stop_reason"] == "until"
+    assert held[700] == held[800] > 0  # the bar stopped where it was
+    with pytest.raises(rcdem.Error, match="no pulled bar 'rod'"):
+        rcdem.Simulation(sc).set_pull_velocity("rod", 0.0)

@@ -26,6 +26,12 @@ struct PulledBar {
   Real work = 0.0;
   Real last_step = 0.0;
   Real load() const { return -force.dot(direction); }
+  // From now on a constant speed along `direction` (leaving any program), reached over the ramp
+  // time from t = 0 as at the start: once that has passed, the change is immediate.
+  void set_speed(Real v) {
+    speed = v;
+    motion = LoadingProgram(v, ramp_time);
+  }
 };
 
 // The pulled bars as a part of the step (solver/step_part.hpp): each prescribes its first

@@ -82,6 +82,7 @@ class Simulation {
   const Plate* find_plate(const std::string& name) const;
   const PulledBar* find_pulled_bar(const std::string& name) const;
   const std::vector<PulledBar>& pulled_bars() const { return pulled_.bars; }
+  std::vector<PulledBar>& pulled_bars() { return pulled_.bars; }
   // The parts in the step's order (solver/step_part.hpp).
   const std::vector<StepPart*>& parts() const { return parts_; }
   // The ledger now. The strain energy is a function of the state, summed here on demand (the
