@@ -31,6 +31,7 @@
 #include <omp.h>
 #endif
 
+#include "rcdem/core/thread_waiting.hpp"
 #include "rcdem/config/scenario.hpp"
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
@@ -186,6 +187,7 @@ ByteCount count_bytes(const rcdem::Simulation& sim) {
 double bytes_per_step(const rcdem::Simulation& sim) { return count_bytes(sim).total(); }
 
 int main(int argc, char** argv) {
+  rcdem::prefer_passive_thread_waiting();  // as rcdem does (core/thread_waiting.hpp)
   const char* usage =
       "usage: rcdem_step_bench SCENARIO.toml STEPS [WARMUP=50] [REPEATS=1] [--checkpoint FILE]\n";
   std::vector<std::string> args;

@@ -16,6 +16,7 @@
 #include <optional>
 #include <thread>
 
+#include "rcdem/core/thread_waiting.hpp"
 #include "rcdem/calibration/calibrate.hpp"
 #include "rcdem/config/scenario.hpp"
 #include "rcdem/config/scenario_overrides.hpp"
@@ -289,6 +290,7 @@ const char* unknown_subcommand(const CLI::App& app, int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  rcdem::prefer_passive_thread_waiting();  // before any OpenMP call (core/thread_waiting.hpp)
   // A file-size limit (ulimit -f) then fails a write with EFBIG, which rcdem reports like any
   // write failure, instead of killing the run without a word or a checkpoint.
   std::signal(SIGXFSZ, SIG_IGN);

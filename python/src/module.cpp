@@ -16,6 +16,7 @@
 #include "rcdem/config/scenario_overrides.hpp"
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
+#include "rcdem/core/thread_waiting.hpp"
 #include "rcdem/run/checkpoint.hpp"
 #include "rcdem/run/run.hpp"
 #include "rcdem/run/run_manifest.hpp"
@@ -358,6 +359,7 @@ void bind_simulation(py::module_& m) {
 
 PYBIND11_MODULE(_rcdem, m) {
   m.doc() = "rcdem's simulator (docs/python.md); use the rcdem package, not this module";
+  prefer_passive_thread_waiting();  // as the CLI does (core/thread_waiting.hpp)
   static py::exception<Error> error(m, "Error", PyExc_RuntimeError);
   py::register_exception_translator([](std::exception_ptr p) {
     try {
