@@ -218,21 +218,17 @@ void bind_state(py::class_<PySimulation>& c) {
       .def_property_readonly("torque", bodies(false, &Bodies::torque, {3}))
       .def_property_readonly("mass", bodies(false, &Bodies::mass, {}))
       .def_property_readonly("radius", bodies(false, &Bodies::radius, {}));
-  c.def_property_readonly("point_damage", [](py::object self) {
-    Simulation& sim = self.cast<PySimulation&>().sim();
-    const ContactState& cs = sim.contacts();  // condensed points brought up to date
-    const LocalPointRecord* r = cs.point.data();
-    const Real* d = &r[0].history.damage;
-    return view(d, static_cast<py::ssize_t>(cs.point.size()), {},
-                static_cast<py::ssize_t>(sizeof(LocalPointRecord)), self, false);
-  });
-  c.def_property_readonly("point_opening", [](py::object self) {
-    Simulation& sim = self.cast<PySimulation&>().sim();
-    const ContactState& cs = sim.contacts();
-    const LocalPointRecord* r = cs.point.data();
-    return view(&r[0].history.un, static_cast<py::ssize_t>(cs.point.size()), {},
-                static_cast<py::ssize_t>(sizeof(LocalPointRecord)), self, false);
-  });
+  // A field of every concrete local point, read in place in the point records (the condensed
+  // contacts' points brought up to date first, as every output does).
+  const auto points = [](Real PointHistory<PlaneVec>::*field) {
+    return [=](py::object self) {
+      const ContactState& cs = self.cast<PySimulation&>().sim().contacts();
+      return view(&(cs.point.data()->history.*field), static_cast<py::ssize_t>(cs.point.size()),
+                  {}, static_cast<py::ssize_t>(sizeof(LocalPointRecord)), self, false);
+    };
+  };
+  c.def_property_readonly("point_damage", points(&PointHistory<PlaneVec>::damage))
+      .def_property_readonly("point_opening", points(&PointHistory<PlaneVec>::un));
   c.def_property_readonly("contact_particles", [](py::object self) {
     const ContactNetwork& net = self.cast<PySimulation&>().sim().specimen().contacts;
     py::array_t<Index> out({static_cast<py::ssize_t>(net.contact_count()), py::ssize_t{2}});
@@ -259,6 +255,14 @@ void bind_state(py::class_<PySimulation>& c) {
     return view(s.empty() ? nullptr : &s[0].axial_force, static_cast<py::ssize_t>(s.size()), {},
                 static_cast<py::ssize_t>(sizeof(NodeState)), self, false);
   });
+}
+
+// The item called `name` (a plate, a pulled bar), or an rcdem.Error "WHAT 'NAME'".
+template <class T>
+T& named(std::vector<T>& items, const std::string& name, const char* what) {
+  for (T& item : items)
+    if (item.name == name) return item;
+  fail("{} '{}'", what, name);
 }
 
 void bind_measures(py::class_<PySimulation>& c) {
@@ -289,17 +293,13 @@ void bind_measures(py::class_<PySimulation>& c) {
   c.def(
       "set_plate_velocity",
       [](PySimulation& s, const std::string& name, Real v) {
-        for (Plate& p : s.sim().plates())
-          if (p.name == name) return p.set_velocity(v);
-        fail("set_plate_velocity: no plate '{}'", name);
+        named(s.sim().plates(), name, "set_plate_velocity: no plate").set_velocity(v);
       },
       py::arg("name"), py::arg("velocity"));
   c.def(
       "set_pull_velocity",
       [](PySimulation& s, const std::string& name, Real v) {
-        for (PulledBar& b : s.sim().pulled_bars())
-          if (b.name == name) return b.set_speed(v);
-        fail("set_pull_velocity: no pulled bar '{}'", name);
+        named(s.sim().pulled_bars(), name, "set_pull_velocity: no pulled bar").set_speed(v);
       },
       py::arg("name"), py::arg("velocity"));
   c.def_property_readonly("pulled_bars", [](PySimulation& s) {

@@ -32,16 +32,23 @@ def test_a_callback_stops_the_run(small, tmp_path):
     assert history["step"][-1] == 200
 
 
-def test_a_callback_changes_the_loading(small, tmp_path):
+def held_run(scenario, out, at, stop, read, **run):
+    """A run whose callback (every 100 steps) calls stop(sim) at step `at` and records read(sim)
+    at every later call; the summary and {step: read(sim)}."""
     held = {}
 
     def hold(sim):
-        if sim.steps == 100:
-            sim.set_plate_velocity("top", 0.0)
-        if sim.steps >= 200:
-            held[sim.steps] = sim.plates["top"]["displacement"]
+        if sim.steps == at:
+            stop(sim)
+        if sim.steps > at:
+            held[sim.steps] = read(sim)
 
-    rcdem.Simulation(small).run(tmp_path / "run", every=100, callback=hold)
+    return rcdem.Simulation(scenario).run(out, every=100, callback=hold, **run), held
+
+
+def test_a_callback_changes_the_loading(small, tmp_path):
+    _, held = held_run(small, tmp_path / "run", 100, lambda s: s.set_plate_velocity("top", 0.0),
+                       lambda s: s.plates["top"]["displacement"])
     assert held[200] == held[300] < 0  # the plate stopped where it was (400 ends the run)
 
 
@@ -127,15 +134,8 @@ def test_a_callback_holds_a_pulled_bar(tmp_path):
     from conftest import SOURCE
     sc = rcdem.Scenario.load(os.path.join(SOURCE, "examples", "pull_out", "NL-B.toml"))
     sc.set("output.snapshots", 0)
-    held = {}
-
-    def hold(sim):
-        if sim.steps == 600:
-            sim.set_pull_velocity("bar", 0.0)
-        if sim.steps >= 700:
-            held[sim.steps] = sim.pulled_bars["bar"]["displacement"]
-
-    s = rcdem.Simulation(sc).run(tmp_path / "run", every=100, callback=hold, until=900)
+    s, held = held_run(sc, tmp_path / "run", 600, lambda s: s.set_pull_velocity("bar", 0.0),
+                       lambda s: s.pulled_bars["bar"]["displacement"], until=900)
     assert s["stop_reason"] == "until"
     assert held[700] == held[800] > 0  # the bar stopped where it was
     with pytest.raises(rcdem.Error, match="no pulled bar 'rod'"):

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <utility>
 
 #include "rcdem/config/bar_path.hpp"
 #include "rcdem/core/segment_distance.hpp"
@@ -27,16 +28,19 @@ std::vector<TouchingPair> touching_pairs(const Bar& a, const Bar& b) {
   const Real radii = 0.5 * (a.diameter + b.diameter);
   const Real tolerance = bar_touch_tolerance(a.diameter, b.diameter);
   std::vector<TouchingPair> out;
-  for (std::size_t i = 0; i < a.cylinders.size(); ++i)
+  const auto ends = [](const CylinderGeometry& c) {
+    return std::pair<Vec3, Vec3>{c.centre - 0.5 * c.length * c.axis, c.centre + 0.5 * c.length * c.axis};
+  };
+  for (std::size_t i = 0; i < a.cylinders.size(); ++i) {
+    const auto [a0, a1] = ends(a.cylinders[i]);
     for (std::size_t j = 0; j < b.cylinders.size(); ++j) {
-      const CylinderGeometry &ca = a.cylinders[i], &cb = b.cylinders[j];
-      const Vec3 a0 = ca.centre - 0.5 * ca.length * ca.axis, a1 = ca.centre + 0.5 * ca.length * ca.axis;
-      const Vec3 b0 = cb.centre - 0.5 * cb.length * cb.axis, b1 = cb.centre + 0.5 * cb.length * cb.axis;
+      const auto [b0, b1] = ends(b.cylinders[j]);
       const SegmentClosestPoints c = closest_points(a0, a1, b0, b1);
       if (c.distance <= radii + tolerance && c.distance > 0.0)
         out.push_back({static_cast<Index>(i), static_cast<Index>(j), a0 + c.s * (a1 - a0),
                        b0 + c.t * (b1 - b0)});
     }
+  }
   return out;
 }
 

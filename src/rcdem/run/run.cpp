@@ -492,8 +492,8 @@ RunSummary RunLoop::interrupted() {
     throw with_resume_hint(e);
   }
   auto& session = session_.end("interrupted");
-  const std::string by = signal_ != 0 ? signal_name(signal_) : "the caller";
-  session["signal"] = signal_ != 0 ? signal_name(signal_) : "none (the caller's callback)";
+  const std::string by = signal_ != 0 ? std::string(signal_name(signal_)) : "the caller's callback";
+  session["signal"] = signal_ != 0 ? by : "none (" + by + ")";
   session["wall_seconds"] =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - session_.wall_start())
           .count();
