@@ -72,6 +72,8 @@ pull_ramp_time = 2.0e-5
 face = "x-"
 [stop]
 displacement = 0.0005
+[solver]
+preset = "basic"
 [loading]
 control_bar = "bar"
 )" + loading,
@@ -406,7 +408,7 @@ TEST(Checkpoint, StateDoesNotDependOnThreadCount) {
   replace("velocity = -0.5", "velocity = -2.0");
   replace("ramp_time = 5.0e-5", "ramp_time = 2.0e-5");
   // With the assembled critical step, whose operator runs in parallel: the same step too.
-  text += "\n[solver]\ntime_step_estimate = \"assembled\"\ndt_safety = 0.8\n";
+  replace("preset = \"basic\"", "preset = \"basic\"\ntime_step_estimate = \"assembled\"\ndt_safety = 0.8");
   const Scenario sc = parse_scenario(text, "cube100.toml");
   const Specimen specimen = build_specimen(sc);
   ASSERT_GT(specimen.contacts.contact_count(), 2048);

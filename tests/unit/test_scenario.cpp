@@ -85,14 +85,17 @@ TEST(Schema, TemplateParsesBackWithEveryDefault) {
 // a file that omits the key gets and what code that builds a Scenario gets are one value. This
 // test checks the round trip, default -> file -> member, field by field: a scenario of only the
 // required keys, one plate and one bar (its yield stress is required) against default-constructed
-// structs.
+// structs. The solver keys solver.preset governs are the exception: SolverSettings{} is preset
+// "basic", so that file names it (the default preset is SolverPreset's test below).
+constexpr const char* kOnlyRequiredKeys =
+    "[specimen]\nshape = \"beam\"\nsize = [0.4, 0.1, 0.1]\n"
+    "[plates.p]\nface = \"z+\"\n[loading]\ncontrol_plate = \"p\"\n[stop]\nsteps = 1\n"
+    "[bars.b]\nstart = [0.05, 0.05, 0.02]\nend = [0.35, 0.05, 0.02]\ndiameter = 0.008\n"
+    "f_y = 5e8\n";
+
 TEST(Scenario, SchemaDefaultsEqualTheStructsDefaults) {
-  const Scenario s = parse_scenario(
-      "[specimen]\nshape = \"beam\"\nsize = [0.4, 0.1, 0.1]\n"
-      "[plates.p]\nface = \"z+\"\n[loading]\ncontrol_plate = \"p\"\n[stop]\nsteps = 1\n"
-      "[bars.b]\nstart = [0.05, 0.05, 0.02]\nend = [0.35, 0.05, 0.02]\ndiameter = 0.008\n"
-      "f_y = 5e8\n",
-      "defaults.toml");
+  const Scenario s = parse_scenario(std::string(kOnlyRequiredKeys) + "[solver]\npreset = \"basic\"\n",
+                                    "defaults.toml");
   const GenerationSettings g;
   EXPECT_EQ(s.generation.seed, g.seed);
   EXPECT_EQ(s.generation.porosity, g.porosity);
@@ -167,4 +170,56 @@ TEST(Scenario, SchemaDefaultsEqualTheStructsDefaults) {
   EXPECT_EQ(s.bars[0].pull_ramp_time, b.pull_ramp_time);
   EXPECT_EQ(s.specimen.notch_depth, SpecimenSettings{}.notch_depth);
   EXPECT_EQ(s.specimen.notch_width, SpecimenSettings{}.notch_width);
+}
+
+// solver.preset (docs/model.md 6): a file that leaves the solver alone gets the study's
+// quasi-static set-up, print-schema shows it, a key the file sets wins over the preset, and
+// dt_safety follows the estimate so that naming per_body alone stays valid.
+TEST(SolverPreset, AFileWithoutSolverKeysGetsTheQuasiStaticSetUp) {
+  const Scenario s = parse_scenario(kOnlyRequiredKeys, "defaults.toml");
+  EXPECT_EQ(s.solver.estimate, TimeStepEstimate::Assembled);
+  EXPECT_EQ(s.solver.dt_safety, 0.7);
+  EXPECT_EQ(s.solver.damping, 0.3);
+  EXPECT_EQ(s.solver.particle_rotational_inertia_scaling, 2.5);
+  EXPECT_EQ(s.solver.bar_rotational_inertia_scaling, 30.0);
+  // The same as the template print-schema writes, which names every default.
+  std::ostringstream out;
+  config::scenario_schema().print_template(out);
+  const std::string t = out.str();
+  for (const char* line : {"preset = \"quasi_static\"\n", "time_step_estimate = \"assembled\"\n",
+                           "dt_safety = 0.7\n", "damping = 0.3\n",
+                           "particle_rotational_inertia_scaling = 2.5\n",
+                           "bar_rotational_inertia_scaling = 30.0\n"})
+    EXPECT_NE(t.find(std::string("\n") + line), std::string::npos) << line;
+}
+
+TEST(SolverPreset, KeysTheFileSetsWinAndDtSafetyFollowsTheEstimate) {
+  const auto with = [](const std::string& solver) {
+    return parse_scenario(std::string(kOnlyRequiredKeys) + "[solver]\n" + solver, "p.toml");
+  };
+  const Scenario a = with("damping = 0.5\n");
+  EXPECT_EQ(a.solver.damping, 0.5);
+  EXPECT_EQ(a.solver.estimate, TimeStepEstimate::Assembled);
+  EXPECT_EQ(a.solver.particle_rotational_inertia_scaling, 2.5);
+  const Scenario b = with("time_step_estimate = \"per_body\"\n");
+  EXPECT_EQ(b.solver.dt_safety, 0.3);
+  EXPECT_EQ(b.solver.damping, 0.3);
+  const Scenario c = with("preset = \"basic\"\nbar_rotational_inertia_scaling = 10\n");
+  EXPECT_EQ(c.solver.estimate, TimeStepEstimate::PerBody);
+  EXPECT_EQ(c.solver.dt_safety, 0.3);
+  EXPECT_EQ(c.solver.damping, 0.7);
+  EXPECT_EQ(c.solver.particle_rotational_inertia_scaling, 1.0);
+  EXPECT_EQ(c.solver.bar_rotational_inertia_scaling, 10.0);
+  const Scenario d = with("preset = \"basic\"\ntime_step_estimate = \"assembled\"\n");
+  EXPECT_EQ(d.solver.dt_safety, 0.3);  // basic keeps SPEC 6's 0.3 on either estimate
+}
+
+TEST(SolverPreset, ErrorsNameThePresetOrTheLine) {
+  std::string msg = error_of(std::string(kOnlyRequiredKeys) + "[solver]\npreset = \"fast\"\n");
+  EXPECT_NE(msg.find("bad.toml:16: key 'solver.preset'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("\"quasi_static\", \"basic\""), std::string::npos) << msg;
+  // A dt_safety the preset would take with the other estimate is refused with the file's line.
+  msg = error_of(std::string(kOnlyRequiredKeys) +
+                 "[solver]\ntime_step_estimate = \"per_body\"\ndt_safety = 0.7\n");
+  EXPECT_NE(msg.find("bad.toml:17: key 'solver.dt_safety' = 0.7"), std::string::npos) << msg;
 }

@@ -26,7 +26,8 @@ inline std::string glued_platens(const std::string& top = "") {
 }
 
 // An elastic (EL) box of edge `size` with k_s = alpha k_n, undamped unless asked; `extra` goes
-// into its [solver] table and may add tables after it (plates).
+// into its [solver] table and may add tables after it (plates). The solver's plain set-up
+// (preset "basic") unless `extra` says otherwise: these tests are about the solver itself.
 inline Scenario elastic_box(Real size, const std::string& extra = "", Real damping = 0.0,
                             Real alpha = 0.3) {
   return parse_scenario(fmt::format(R"(
@@ -40,6 +41,7 @@ relaxation_iterations = 100
 law = "EL"
 alpha = {3}
 [solver]
+preset = "basic"
 damping = {1}
 {2}
 )",

@@ -172,9 +172,10 @@ TEST(CriticalTimeStep, ReinforcedCubeStableAtPointEightUnstableAtOnePointTwo) {
   const auto moving = text.find("velocity = -0.5");
   ASSERT_NE(moving, std::string::npos);
   text.replace(moving, 15, "velocity = 0.0");
-  text +=
-      "\n[contact]\nlaw = \"EL\"\n[solver]\ntime_step_estimate = \"assembled\"\n"
-      "dt_safety = 0.8\ndamping = 0.0\n";
+  const auto preset = text.find("preset = \"basic\"");
+  ASSERT_NE(preset, std::string::npos);
+  text.replace(preset, 16, "preset = \"basic\"\ntime_step_estimate = \"assembled\"\ndt_safety = 0.8\ndamping = 0.0");
+  text += "\n[contact]\nlaw = \"EL\"\n";
   const Scenario sc = parse_scenario(text, "small_run.toml");
   const Specimen sp = build_specimen(sc);
   Simulation probe(sc, sp);

@@ -618,6 +618,7 @@ size = [0.04, 0.04, 0.04]
 [contact]
 law = "BL"
 [solver]
+preset = "basic"
 damping = 0.0
 )",
                                      "pair.toml");

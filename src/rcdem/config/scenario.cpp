@@ -10,6 +10,7 @@
 #include "rcdem/config/scenario_bindings.hpp"
 #include "rcdem/config/scenario_checks.hpp"
 #include "rcdem/config/scenario_text.hpp"
+#include "rcdem/config/solver_preset.hpp"
 #include "rcdem/config/specimen_geometry.hpp"
 #include "rcdem/config/specimen_registry.hpp"
 #include "rcdem/core/error.hpp"
@@ -182,6 +183,10 @@ struct Reader {
   std::map<std::string, std::vector<std::string>> instances;
 
   void fill_defaults() {
+    for (const auto& key : config::fill_solver_preset(values))
+      if (!origin.count(key))
+        origin[key] = fmt::format("{} (solver.preset \"{}\")", file,
+                                  std::get<std::string>(values.at(config::kSolverPresetKey)));
     for (const auto& decl : schema.keys()) {
       const auto star = decl.path.find('*');
       if (star != std::string::npos) {
