@@ -5,6 +5,7 @@
 // body's own step, damping 0.7, true moments of inertia). A key the file sets keeps its value.
 // SolverSettings{} in code is the basic set-up: the preset is a property of scenario files.
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
