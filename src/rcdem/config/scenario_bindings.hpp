@@ -1,6 +1,7 @@
 #pragma once
 // The scenario keys bound to the members they set: config/scenario_schema.cpp declares a key and
-// its member at once, so the key's default is the member's initial value in its struct, and the
+// its member at once, so the key's default is the member's initial value in its struct (the
+// solver keys solver.preset governs excepted: config/solver_preset.hpp), and the
 // loader (scenario.cpp) sets every bound member from the value read, with no conversion written
 // per key. Keys that set several members or need the specimen to be checked (specimen.shape and
 // size, a plate's face and extent, a bar's ends) are converted by hand there.
