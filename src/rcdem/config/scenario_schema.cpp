@@ -150,8 +150,9 @@ class Declarations {
   // member's (SolverSettings{} is the basic set-up): what print-schema shows is what a file gets.
   static void preset_default(KeyDecl& d) {
     const std::string& preset = solver_preset_names().front();
-    if (d.path == "solver.dt_safety")
-      d.default_value = solver_preset_dt_safety(preset, "assembled");
+    if (d.path == "solver.dt_safety")  // for the preset's own estimate
+      d.default_value = solver_preset_dt_safety(
+          preset, std::get<std::string>(*solver_preset_value(preset, "solver.time_step_estimate")));
     else if (auto v = solver_preset_value(preset, d.path))
       d.default_value = *v;
   }
