@@ -2,10 +2,15 @@
 // bandwidth (issue: bench/ throughput and bandwidth, YADE side by side).
 //
 // Usage: rcdem_step_bench SCENARIO.toml STEPS [WARMUP=50] [REPEATS=1] [--checkpoint FILE]
+//                         [--save-checkpoint DIR] [--threads N,N,...]
 //   Generates the specimen (not timed); with --checkpoint, restores the state a run of that
 //   scenario saved (run/checkpoint: a beam cracked half way through, say; the specimen must be the
 //   same, the scenario's hash is not checked, so a copy of the scenario with other solver or
-//   output keys serves); runs WARMUP steps (not timed), then times STEPS calls of
+//   output keys serves); runs WARMUP steps (not timed; with --save-checkpoint, the state after
+//   them is written to DIR/checkpoint_<step>.rcp, so that a cracked state is made once and timed
+//   at several thread counts; --threads times each count in turn, in this one process, each from
+//   the state after the warm-up: one generation for all, and the same steps, which must end on
+//   the same bits: end_strain_energy_J), then times STEPS calls of
 //   step() with steady_clock, REPEATS times back to back, and reports the fastest repetition (on a
 //   shared machine the others carry its neighbours' load; bench/throughput.sh gives YADE the
 //   same). Stop rules, history and snapshots are not involved (this is the step alone).
@@ -23,13 +28,17 @@
 #include <cstdint>
 #include <cstdio>
 #include <ctime>
+#include <algorithm>
 #include <exception>
+#include <stdexcept>
+#include <filesystem>
 #include <string>
 #include <vector>
 
 #if defined(_OPENMP)
 #include <omp.h>
 #endif
+#include <unistd.h>
 
 #include "rcdem/core/thread_waiting.hpp"
 #include "rcdem/config/scenario.hpp"
@@ -186,115 +195,190 @@ ByteCount count_bytes(const rcdem::Simulation& sim) {
 // The bytes one step moves (see count_bytes above for every term).
 double bytes_per_step(const rcdem::Simulation& sim) { return count_bytes(sim).total(); }
 
-int main(int argc, char** argv) {
-  rcdem::prefer_passive_thread_waiting();  // as rcdem does (core/thread_waiting.hpp)
-  const char* usage =
-      "usage: rcdem_step_bench SCENARIO.toml STEPS [WARMUP=50] [REPEATS=1] [--checkpoint FILE]\n";
-  std::vector<std::string> args;
-  std::string checkpoint;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--checkpoint") {
-      if (i + 1 >= argc) {
-        std::fprintf(stderr, "rcdem_step_bench: --checkpoint needs a file\n%s", usage);
-        return 1;
+namespace {
+
+struct BenchArgs {
+  std::string path, checkpoint, save_dir;
+  long steps = 0, warmup = 50, repeats = 1;
+  std::vector<int> threads;  // --threads: each count timed from the same state, in one process
+};
+
+const char* const kUsage =
+    "usage: rcdem_step_bench SCENARIO.toml STEPS [WARMUP=50] [REPEATS=1] [--checkpoint FILE] "
+    "[--save-checkpoint DIR] [--threads N,N,...]\n";
+
+std::vector<int> parse_threads(const std::string& text) {
+  std::vector<int> out;
+  std::size_t at = 0;
+  while (at <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', at), text.size());
+    std::size_t used = 0;
+    const int t = std::stoi(text.substr(at, comma - at), &used);
+    if (used != comma - at || t <= 0) throw std::invalid_argument(text);
+    out.push_back(t);
+    at = comma + 1;
+  }
+  return out;
+}
+
+// Returns false (after printing why) on a malformed command line.
+bool parse_args(int argc, char** argv, BenchArgs& a) {
+  std::vector<std::string> pos;
+  try {
+    for (int i = 1; i < argc; ++i) {
+      const std::string opt = argv[i];
+      const bool takes_value =
+          opt == "--checkpoint" || opt == "--save-checkpoint" || opt == "--threads";
+      if (!takes_value) {
+        pos.push_back(opt);
+        continue;
       }
-      checkpoint = argv[++i];
-    } else {
-      args.push_back(a);
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "rcdem_step_bench: %s needs a value\n%s", opt.c_str(), kUsage);
+        return false;
+      }
+      const std::string v = argv[++i];
+      if (opt == "--checkpoint") a.checkpoint = v;
+      if (opt == "--save-checkpoint") a.save_dir = v;
+      if (opt == "--threads") a.threads = parse_threads(v);
+    }
+    if (pos.size() < 2 || pos.size() > 4) {
+      std::fprintf(stderr, "%s", kUsage);
+      return false;
+    }
+    a.path = pos[0];
+    a.steps = std::stol(pos[1]);
+    if (pos.size() >= 3) a.warmup = std::stol(pos[2]);
+    if (pos.size() >= 4) a.repeats = std::stol(pos[3]);
+  } catch (const std::exception&) {
+    a.steps = -1;
+  }
+  if (a.steps <= 0 || a.warmup < 0 || a.repeats <= 0) {
+    std::fprintf(stderr,
+                 "rcdem_step_bench: STEPS and REPEATS must be > 0, WARMUP >= 0 and --threads a "
+                 "comma-separated list of counts > 0 (whole numbers)\n");
+    return false;
+  }
+  return true;
+}
+
+int current_threads() {
+#if defined(_OPENMP)
+  return omp_get_max_threads();
+#else
+  return 1;
+#endif
+}
+
+// Times STEPS steps REPEATS times from the simulation's present state and prints the result
+// lines (see the file's head). `setup_s` is reported as given.
+void time_and_report(rcdem::Simulation& sim, const BenchArgs& a, double setup_s) {
+  double seconds = 0, cpu_seconds = 0;
+  std::string repeat_seconds;
+  for (long r = 0; r < a.repeats; ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::clock_t c0 = std::clock();
+    for (long k = 0; k < a.steps; ++k) sim.step();
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double cpu = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
+    repeat_seconds += (r ? "," : "") + std::to_string(s);
+    if (r == 0 || s < seconds) {
+      seconds = s;
+      cpu_seconds = cpu;
     }
   }
-  if (args.size() < 2 || args.size() > 4) {
-    std::fprintf(stderr, "%s", usage);
-    return 1;
+
+  // The strain energy a history row of a run reads (not part of the step; before count_bytes,
+  // which must see the last step's condensed contacts as the row does): fastest of 3.
+  double strain_energy_s = 0, strain_energy = 0;
+  for (int r = 0; r < 3; ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    strain_energy = sim.strain_energy();
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (r == 0 || s < strain_energy_s) strain_energy_s = s;
   }
-  const std::string path = args[0];
-  long steps = 0, warmup = 50, repeats = 1;
-  try {
-    steps = std::stol(args[1]);
-    if (args.size() >= 3) warmup = std::stol(args[2]);
-    if (args.size() >= 4) repeats = std::stol(args[3]);
-  } catch (const std::exception&) {
-    steps = -1;
+
+  const ByteCount bc = count_bytes(sim);
+  const double bytes = bytes_per_step(sim);
+  const auto bodies = static_cast<double>(sim.bodies().size());
+  const auto contacts = static_cast<double>(sim.specimen().contacts.contact_count());
+  const auto points = static_cast<double>(sim.specimen().contacts.point_count());
+  const double rate = static_cast<double>(a.steps) / seconds;
+  std::printf(
+      "scenario=%s threads=%d bodies=%.0f contacts=%.0f local_points=%.0f steps=%ld "
+      "seconds=%.4f steps_per_s=%.3f particle_steps_per_s=%.4g contact_steps_per_s=%.4g "
+      "local_point_steps_per_s=%.4g bytes_per_step=%.0f bytes_per_local_point=%.1f "
+      "achieved_GBps=%.3f setup_seconds=%.2f condensed_contacts=%.0f cpu_seconds=%.4f "
+      "repeat_seconds=%s strain_energy_seconds=%.5f end_strain_energy_J=%.17g\n",
+      a.path.c_str(), current_threads(), bodies, contacts, points, a.steps, seconds, rate,
+      rate * bodies, rate * contacts, rate * points, bytes, bytes / points, bytes * rate * 1e-9,
+      setup_s, bc.condensed_contacts, cpu_seconds, repeat_seconds.c_str(), strain_energy_s,
+      strain_energy);
+  std::printf(
+      "# bytes: per_local_point=%.0f x %.0f visited = %.4g; per_contact=%.0f x %.0f + "
+      "condensed %.0f x %.0f = %.4g; "
+      "per_body=%.0f x %.0f = %.4g; plates=%.0f x %.0f = %.4g; interfaces=%.0f x %.0f "
+      "+ %.0f x %.0f points = %.4g; nodes=%.0f x %.0f = %.4g; total=%.4g\n",
+      bc.per_local_point, bc.visited_points, bc.points_total(), bc.per_contact,
+      bc.contacts - bc.condensed_contacts, bc.per_condensed_contact, bc.condensed_contacts,
+      bc.contacts_total(), bc.per_body, bc.bodies, bc.bodies_total(), bc.per_plate_contact,
+      bc.plate_contacts, bc.plates_total(), bc.per_interface_contact, bc.interface_contacts,
+      bc.per_local_point, bc.interface_points, bc.interfaces_total(), bc.per_node, bc.nodes,
+      bc.nodes_total(), bc.total());
+  std::fflush(stdout);
+}
+
+// With --threads, every count starts from the state after the warm-up, saved once and restored
+// before each, so the counts time the same steps and must end on the same bits.
+void time_each_thread_count(rcdem::Simulation& sim, const BenchArgs& a, double setup_s) {
+  namespace fs = std::filesystem;
+  const bool own_dir = a.save_dir.empty();
+  const fs::path dir = own_dir ? fs::temp_directory_path() /
+                                     ("rcdem_step_bench_" + std::to_string(::getpid()))
+                               : fs::path(a.save_dir);
+  fs::create_directories(dir);
+  const fs::path state = rcdem::io::write_checkpoint(dir, rcdem::io::CheckpointParts{&sim}, 0);
+  for (const int t : a.threads) {
+#if defined(_OPENMP)
+    omp_set_num_threads(t);
+#endif
+    rcdem::io::restore_checkpoint(state, rcdem::io::CheckpointParts{&sim}, 0);
+    time_and_report(sim, a, setup_s);
   }
-  if (steps <= 0 || warmup < 0 || repeats <= 0) {
-    std::fprintf(stderr,
-                 "rcdem_step_bench: STEPS and REPEATS must be > 0 and WARMUP >= 0 (whole "
-                 "numbers)\n");
-    return 1;
-  }
+  if (own_dir) fs::remove_all(dir);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  rcdem::prefer_passive_thread_waiting();  // as rcdem does (core/thread_waiting.hpp)
+  BenchArgs a;
+  if (!parse_args(argc, argv, a)) return 1;
   rcdem::Progress::set_quiet_default(true);  // no generation progress lines among the results
   try {
     const auto g0 = std::chrono::steady_clock::now();
-    const rcdem::Scenario sc = rcdem::load_scenario(path);
+    const rcdem::Scenario sc = rcdem::load_scenario(a.path);
     rcdem::Simulation sim(sc, rcdem::build_specimen(sc));
-    if (!checkpoint.empty()) {
+    if (!a.checkpoint.empty()) {
       // Only the simulation's sections are read; the specimen's fingerprint is still checked.
-      const auto header = rcdem::io::inspect_checkpoint(checkpoint);
-      rcdem::io::restore_checkpoint(checkpoint, rcdem::io::CheckpointParts{&sim},
+      const auto header = rcdem::io::inspect_checkpoint(a.checkpoint);
+      rcdem::io::restore_checkpoint(a.checkpoint, rcdem::io::CheckpointParts{&sim},
                                     header.scenario_hash);
     }
     const double setup_s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - g0).count();
     // Warm-up: caches, pages, branch history; a long one loads the specimen into cracking, so
     // that the timed steps see damaged contacts (the default 50 leaves every contact elastic).
-    for (long k = 0; k < warmup; ++k) sim.step();
-    double seconds = 0, cpu_seconds = 0;
-    std::string repeat_seconds;
-    for (long r = 0; r < repeats; ++r) {
-      const auto t0 = std::chrono::steady_clock::now();
-      const std::clock_t c0 = std::clock();
-      for (long k = 0; k < steps; ++k) sim.step();
-      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      const double cpu = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
-      repeat_seconds += (r ? "," : "") + std::to_string(s);
-      if (r == 0 || s < seconds) {
-        seconds = s;
-        cpu_seconds = cpu;
-      }
+    for (long k = 0; k < a.warmup; ++k) sim.step();
+    if (!a.threads.empty()) {
+      time_each_thread_count(sim, a, setup_s);
+      return 0;
     }
-
-    // The strain energy a history row of a run reads (not part of the step; before count_bytes,
-    // which must see the last step's condensed contacts as the row does): fastest of 3.
-    double strain_energy_s = 0;
-    for (int r = 0; r < 3; ++r) {
-      const auto t0 = std::chrono::steady_clock::now();
-      volatile const double e = sim.strain_energy();
-      (void)e;
-      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      if (r == 0 || s < strain_energy_s) strain_energy_s = s;
+    if (!a.save_dir.empty()) {
+      std::filesystem::create_directories(a.save_dir);
+      rcdem::io::write_checkpoint(a.save_dir, rcdem::io::CheckpointParts{&sim}, 0);
     }
-
-    int threads = 1;
-#if defined(_OPENMP)
-    threads = omp_get_max_threads();
-#endif
-    const ByteCount bc = count_bytes(sim);
-    const double bytes = bytes_per_step(sim);
-    const auto bodies = static_cast<double>(sim.bodies().size());
-    const auto contacts = static_cast<double>(sim.specimen().contacts.contact_count());
-    const auto points = static_cast<double>(sim.specimen().contacts.point_count());
-    const double rate = static_cast<double>(steps) / seconds;
-    std::printf(
-        "scenario=%s threads=%d bodies=%.0f contacts=%.0f local_points=%.0f steps=%ld "
-        "seconds=%.4f steps_per_s=%.3f particle_steps_per_s=%.4g contact_steps_per_s=%.4g "
-        "local_point_steps_per_s=%.4g bytes_per_step=%.0f bytes_per_local_point=%.1f "
-        "achieved_GBps=%.3f setup_seconds=%.2f condensed_contacts=%.0f cpu_seconds=%.4f "
-        "repeat_seconds=%s strain_energy_seconds=%.5f\n",
-        path.c_str(), threads, bodies, contacts, points, steps, seconds, rate, rate * bodies,
-        rate * contacts, rate * points, bytes, bytes / points, bytes * rate * 1e-9, setup_s,
-        bc.condensed_contacts, cpu_seconds, repeat_seconds.c_str(), strain_energy_s);
-    std::printf(
-        "# bytes: per_local_point=%.0f x %.0f visited = %.4g; per_contact=%.0f x %.0f + "
-        "condensed %.0f x %.0f = %.4g; "
-        "per_body=%.0f x %.0f = %.4g; plates=%.0f x %.0f = %.4g; interfaces=%.0f x %.0f "
-        "+ %.0f x %.0f points = %.4g; nodes=%.0f x %.0f = %.4g; total=%.4g\n",
-        bc.per_local_point, bc.visited_points, bc.points_total(), bc.per_contact,
-        bc.contacts - bc.condensed_contacts, bc.per_condensed_contact, bc.condensed_contacts,
-        bc.contacts_total(), bc.per_body, bc.bodies, bc.bodies_total(), bc.per_plate_contact,
-        bc.plate_contacts, bc.plates_total(), bc.per_interface_contact, bc.interface_contacts,
-        bc.per_local_point, bc.interface_points, bc.interfaces_total(), bc.per_node, bc.nodes,
-        bc.nodes_total(), bc.total());
+    time_and_report(sim, a, setup_s);
   } catch (const rcdem::Error& e) {
     std::fprintf(stderr, "rcdem_step_bench: %s\n", e.what());
     return 1;
