@@ -22,7 +22,12 @@ struct PointSums {
   Real m_n = 0, m_1 = 0, m_2 = 0;  // its moment about A's centre
   Real damage = 0, friction = 0;   // dissipated this step
   Real point_damage = 0;           // the point's D after the step
+  // 1 where this step took the point's D from 0 above 0, or from below 1 to 1 (D never decreases,
+  // S4): what the step's counters of damaged and broken points add (as reals, to be summed in
+  // the SIMD reduction).
+  Real newly_damaged = 0, newly_broken = 0;
 };
+
 
 // One local point of a contact, in the contact's frame (see evaluate_contacts): advances its
 // history by the law and returns what it adds to the contact's sums. A point is read from and
@@ -48,10 +53,13 @@ struct PointUpdate {
     const Real u_1 = disp0.y() + disp(1, 0) * rx + disp(1, 1) * ry + disp(1, 2) * rz;
     const Real u_2 = disp0.z() + disp(2, 0) * rx + disp(2, 1) * ry + disp(2, 2) * rz;
     typename Law::template State<PlaneVec> s = p.history;
+    const Real damage_before = s.damage;
     const LawResult res = law.update(p.constants, s, u_n, PlaneVec{u_1, u_2});  // (1)-(2)
     store_state(p.history, s);
     PointSums out;
     out.point_damage = s.damage;
+    out.newly_damaged = damage_before == 0 && s.damage > 0;
+    out.newly_broken = damage_before < 1 && s.damage >= 1;
     // On B; tension (fn > 0) pulls B back towards A.
     out.f_n = -s.fn;
     out.f_1 = s.fs.x;
@@ -173,17 +181,20 @@ template <int kWrite, typename T>
 }
 
 // The points of contact c in its frame `f`, and what the contact then exerts: the second half.
+// Returns how many of its points became damaged and broken.
 template <typename Law, bool kPointsOnly = false>
-[[gnu::always_inline]] inline void contact_points(const Law& law, const ContactInputs& in,
-                                                  ContactState& cs, ElasticCondensation* cond,
-                                                  Index c, const ContactFrame& f) {
+[[gnu::always_inline]] inline PointTransitions contact_points(const Law& law,
+                                                              const ContactInputs& in,
+                                                              ContactState& cs,
+                                                              ElasticCondensation* cond, Index c,
+                                                              const ContactFrame& f) {
   const ContactNetwork& net = in.net;
   Real phi_n = 0.0, phi_1 = 0.0, phi_2 = 0.0, mom_n = 0.0, mom_1 = 0.0, mom_2 = 0.0;
-  Real damage = 0.0, friction = 0.0, max_damage = 0.0;
+  Real damage = 0.0, friction = 0.0, max_damage = 0.0, newly_damaged = 0.0, newly_broken = 0.0;
   const PointUpdate<Law> point{law, cs.point.data(), f.xa0, f.disp0, f.disp, f.arm};
   const Index begin = net.point_begin[c], end = net.point_begin[c + 1];
-#pragma omp simd reduction(+ : phi_n, phi_1, phi_2, mom_n, mom_1, mom_2, damage, friction) \
-    reduction(max : max_damage)
+#pragma omp simd reduction(+ : phi_n, phi_1, phi_2, mom_n, mom_1, mom_2, damage, friction, \
+                               newly_damaged, newly_broken) reduction(max : max_damage)
   for (Index m = begin; m < end; ++m) {
     const PointSums o = point(m);
     phi_n += o.f_n;
@@ -194,9 +205,13 @@ template <typename Law, bool kPointsOnly = false>
     mom_2 += o.m_2;
     damage += o.damage;
     friction += o.friction;
+    newly_damaged += o.newly_damaged;
+    newly_broken += o.newly_broken;
     max_damage = std::max(max_damage, o.point_damage);
   }
-  if constexpr (kPointsOnly) return;
+  const PointTransitions changed{static_cast<Index>(newly_damaged),
+                                 static_cast<Index>(newly_broken)};
+  if constexpr (kPointsOnly) return changed;
   if (f.intact && max_damage > 0) cond->intact[c] = 0;
   const Vec3 force = phi_n * f.n + phi_1 * f.t1 + phi_2 * f.t2;
   const Vec3 moment_a = mom_n * f.n + mom_1 * f.t1 + mom_2 * f.t2;
@@ -205,6 +220,7 @@ template <typename Law, bool kPointsOnly = false>
   cs.torque_a[c] = -moment_a;
   cs.dissipated_damage[c] = damage;
   cs.dissipated_friction[c] = friction;
+  return changed;
 }
 
 // One contact through its points (kPointsOnly: only the points' histories and the frame, for
@@ -223,12 +239,24 @@ template <typename Law, bool kPointsOnly = false>
 // every point of the contact is intact: their forces are then independent of the frame
 // (kn u_n, -ks u_s), so it is any axis across n, as ElasticCondensation's catch-up draws it.
 template <typename Law, bool kPointsOnly = false>
-[[gnu::always_inline]] inline void evaluate_contact(const Law& law, const ContactInputs& in,
-                                                    ContactState& cs, ElasticCondensation* cond,
-                                                    Index c) {
+[[gnu::always_inline]] inline PointTransitions evaluate_contact(const Law& law,
+                                                                const ContactInputs& in,
+                                                                ContactState& cs,
+                                                                ElasticCondensation* cond,
+                                                                Index c) {
   ContactFrame f;
   contact_frame(in, cs, cond, c, f);
-  contact_points<Law, kPointsOnly>(law, in, cs, cond, c, f);
+  return contact_points<Law, kPointsOnly>(law, in, cs, cond, c, f);
+}
+
+// A block's transitions (PointTransitions), and the flag of each contact with a newly broken
+// point, which ContactState::tally_transitions collects after the loop.
+[[gnu::always_inline]] inline void note_transitions(ContactState& cs, Index c,
+                                                    const PointTransitions& t,
+                                                    PointTransitions& sum) {
+  sum.damaged += t.damaged;
+  sum.broken += t.broken;
+  if (t.broken > 0) cs.newly_broken_contact[static_cast<std::size_t>(c)] = 1;
 }
 
 // The loop over a network's contacts. With `cond` (the concrete network under BL), an intact
@@ -240,24 +268,35 @@ template <typename Law, bool kPointsOnly = false>
 // `previous` (with `cond`): the last evaluation's kinematics. A contact condensed then and visited
 // now first has its points brought up to that step, so that the law sees the history it would
 // have had (the dissipation of a point's first inelastic step reads its previous forces).
+//
+// Every contact's point transitions are counted per block of CondensedBlock::kSize contacts
+// (ContactState::block_transitions), with or without `cond`.
 template <typename Law>
 void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs,
                        ElasticCondensation* cond = nullptr,
                        const ContactInputs* previous = nullptr) {
+  constexpr Index kBlock = CondensedBlock::kSize;
+  cs.size_blocks(in.net.contact_count(), kBlock);
   if (!cond) {
-    parallel_for(in.net.contact_count(), [&](Index c) { evaluate_contact(law, in, cs, cond, c); });
+    parallel_for_blocks(in.net.contact_count(), kBlock, [&](Index begin, Index end) {
+      PointTransitions sum;
+      for (Index c = begin; c < end; ++c)
+        note_transitions(cs, c, evaluate_contact(law, in, cs, cond, c), sum);
+      cs.block_transitions[static_cast<std::size_t>(begin / kBlock)] = sum;
+    });
+    cs.tally_transitions(kBlock);
     return;
   }
   assert(in.pose && "the condensed kernel reads the bodies' poses");
   cond->any_condensed = true;  // cleared by the catch-up; harmless if none was
   const CondensedInputs ci{cond->sums, in.net.particle_a.data(), in.net.particle_b.data(), in.pose,
                            in.net.contact_count()};
-  const Index blocks = (in.net.contact_count() + CondensedBlock::kSize - 1) / CondensedBlock::kSize;
+  const Index blocks = (in.net.contact_count() + kBlock - 1) / kBlock;
   if (static_cast<Index>(cs.block_damage.size()) != blocks) {  // the first step only
     cs.block_damage.assign(static_cast<std::size_t>(blocks), 0.0);
     cs.block_friction.assign(static_cast<std::size_t>(blocks), 0.0);
   }
-  parallel_for_blocks(in.net.contact_count(), CondensedBlock::kSize, [&](Index begin, Index end) {
+  parallel_for_blocks(in.net.contact_count(), kBlock, [&](Index begin, Index end) {
     CondensedBlock block;
     evaluate_condensed_block(ci, begin, end - begin, cs, block);
     // The contacts that go through their points: every frame first, then every contact's points.
@@ -274,7 +313,11 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
       contact_frame(in, cs, cond, c, frames[visits]);
       visit[visits++] = c;
     }
-    for (Index k = 0; k < visits; ++k) contact_points(law, in, cs, cond, visit[k], frames[k]);
+    PointTransitions changed;
+    for (Index k = 0; k < visits; ++k)
+      note_transitions(cs, visit[k], contact_points(law, in, cs, cond, visit[k], frames[k]),
+                       changed);
+    cs.block_transitions[static_cast<std::size_t>(begin / kBlock)] = changed;
     // Contacts evaluated from their sums dissipate exactly zero, so the kernel does not store it
     // (16 bytes a contact less to write) and the block sums its visited contacts, in contact
     // order: the same sum as over all of them with zeros.
@@ -286,6 +329,7 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
     cs.block_damage[begin / CondensedBlock::kSize] = damage;
     cs.block_friction[begin / CondensedBlock::kSize] = friction;
   });
+  cs.tally_transitions(kBlock);
 }
 
 // A network's inputs from the bodies' current state (`rotation`: their orientations as matrices).

@@ -1,5 +1,6 @@
 #include "rcdem/contact/contact_state.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace rcdem {
@@ -32,6 +33,40 @@ void ContactState::init(const ContactNetwork& net, const std::vector<Vec3>& x,
   torque_a.assign(nc, Vec3::Zero());
   dissipated_damage.assign(nc, 0.0);
   dissipated_friction.assign(nc, 0.0);
+  recount();
+}
+
+void ContactState::size_blocks(Index contacts, Index block) {
+  const auto blocks = static_cast<std::size_t>((contacts + block - 1) / block);
+  if (block_transitions.size() == blocks) return;  // the first step only
+  block_transitions.assign(blocks, PointTransitions{});
+  newly_broken_contact.assign(static_cast<std::size_t>(contacts), 0);
+}
+
+void ContactState::tally_transitions(Index block) {
+  const auto contacts = static_cast<Index>(newly_broken_contact.size());
+  for (std::size_t k = 0; k < block_transitions.size(); ++k) {
+    const PointTransitions& t = block_transitions[k];
+    damaged_or_broken += t.damaged;
+    broken += t.broken;
+    if (t.broken == 0) continue;
+    const Index begin = static_cast<Index>(k) * block;
+    for (Index c = begin; c < std::min(begin + block, contacts); ++c) {
+      std::uint8_t& flag = newly_broken_contact[static_cast<std::size_t>(c)];
+      if (!flag) continue;
+      broken_contact_log.push_back(c);
+      flag = 0;
+    }
+  }
+}
+
+void ContactState::recount() {
+  damaged_or_broken = broken = 0;
+  for (const LocalPointRecord& r : point.records) {
+    damaged_or_broken += r.history.damage > 0.0;
+    broken += r.history.damage >= 1.0;
+  }
+  broken_contact_log.clear();
 }
 
 }  // namespace rcdem

@@ -2,6 +2,7 @@
 // What the contact loop keeps between steps (the history of every local point, the contact
 // normals) and what it hands to the gather (one force and two torques per contact, and the
 // contact's energy terms), all as flat arrays.
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,12 @@ namespace rcdem {
 
 // A unit vector perpendicular to the unit vector n.
 Vec3 any_perpendicular(const Vec3& n);
+
+// How many points of a contact, or of a block of contacts, became damaged (D left 0) and broken
+// (D reached 1) in one step.
+struct PointTransitions {
+  Index damaged = 0, broken = 0;
+};
 
 struct ContactState {
   LocalPointRecords point;   // per local point, frame components
@@ -36,6 +43,19 @@ struct ContactState {
   // in a fixed order instead of passing over every contact on one thread (a twentieth of an
   // elastic step at 2 threads).
   std::vector<Real> block_damage, block_friction;
+
+  // How many points are damaged (D > 0, broken ones included) and broken (D = 1), kept by the
+  // loop from each point's transitions (contact_loop.hpp, PointTransitions) rather than counted
+  // over every point when a history row asks; and the contacts in which points broke, one entry
+  // per contact and step, in contact order within a step (run/crack_record.cpp reads the tail it
+  // has not seen). Recounted from the points at init and on restore, when the log starts empty.
+  Index damaged_or_broken = 0, broken = 0;
+  std::vector<Index> broken_contact_log;
+  std::vector<PointTransitions> block_transitions;  // per block of the loop
+  std::vector<std::uint8_t> newly_broken_contact;  // per contact, cleared by the tally
+  void size_blocks(Index contacts, Index block);
+  void tally_transitions(Index block);  // the blocks' transitions into the totals and the log
+  void recount();
 
   // Normals at t = 0: centre to centre, or (with anchors) perpendicular to the bar's axis.
   // A point's shear force and accumulated shear displacement in the world frame.
@@ -62,6 +82,8 @@ struct ContactState {
              column(c.torque_b), column(c.torque_a), column(c.dissipated_damage),
              column(c.dissipated_friction));
     ar.table(name + ".points", c.point.records.size(), column(c.point.records));
+    if constexpr (Archive::loading)
+      if (ar.applying()) c.recount();
   }
 
   void init(const ContactNetwork& net, const std::vector<Vec3>& positions,

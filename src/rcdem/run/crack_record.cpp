@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "rcdem/io/atomic_file.hpp"
 #include "rcdem/solver/simulation.hpp"
 
@@ -11,13 +13,34 @@ CrackRecord::CrackRecord(const Simulation& sim)
     : broken_(sim.point_damage().size(), std::uint8_t{0}) {}
 
 void CrackRecord::update(const Simulation& sim, Real deflection, Real load) {
-  const PointDamage damage = sim.point_damage();  // no catch-up needed
-  const ContactNetwork& net = sim.specimen().contacts;
-  for (std::size_t m = 0; m < damage.size(); ++m) {
-    if (broken_[m] || damage[m] < 1.0) continue;
-    broken_[m] = 1;
-    rows_.push_back({net.point_position0[m], net.point_area[m], sim.steps(), deflection, load});
+  const std::vector<Index>& log = sim.broken_contact_log();
+  if (log_read_ == kScanAll || log_read_ > log.size()) {
+    scan_all(sim, deflection, load);
+    log_read_ = log.size();
+    return;
   }
+  if (log_read_ == log.size()) return;
+  // In contact order, so in point order: the rows a scan of every point would append.
+  std::vector<Index> contacts(log.begin() + static_cast<std::ptrdiff_t>(log_read_), log.end());
+  log_read_ = log.size();
+  std::sort(contacts.begin(), contacts.end());
+  contacts.erase(std::unique(contacts.begin(), contacts.end()), contacts.end());
+  const ContactNetwork& net = sim.specimen().contacts;
+  for (const Index c : contacts)
+    for (Index m = net.point_begin[c]; m < net.point_begin[c + 1]; ++m)
+      add(sim, static_cast<std::size_t>(m), deflection, load);
+}
+
+void CrackRecord::scan_all(const Simulation& sim, Real deflection, Real load) {
+  for (std::size_t m = 0; m < broken_.size(); ++m) add(sim, m, deflection, load);
+}
+
+void CrackRecord::add(const Simulation& sim, std::size_t m, Real deflection, Real load) {
+  if (broken_[m] || sim.point_damage()[m] < 1.0) return;
+  broken_[m] = 1;
+  const ContactNetwork& net = sim.specimen().contacts;
+  const auto i = static_cast<Index>(m);
+  rows_.push_back({net.point_position0[i], net.point_area[i], sim.steps(), deflection, load});
 }
 
 void CrackRecord::write(const std::filesystem::path& path) const {

@@ -20,7 +20,9 @@ class CrackRecord {
   explicit CrackRecord(const Simulation& sim);
 
   // Appends the points that broke since the last call, stamped with the step and the control's
-  // deflection and load: the resolution is the spacing of the calls (the history's).
+  // deflection and load: the resolution is the spacing of the calls (the history's). Visits only
+  // the contacts the simulation's log names since the last call, in contact order; the first call
+  // after construction or a restore visits every point (the log starts empty then).
   void update(const Simulation& sim, Real deflection, Real load);
 
   // broken_points.csv: x_m,y_m,z_m,area_m2,step,deflection_m,load_N, in the order they broke.
@@ -38,6 +40,8 @@ class CrackRecord {
     ar.bytes("cracks.broken", c.broken_);
     ar.list("cracks", c.rows_, &Row::position, &Row::area, &Row::step, &Row::deflection,
             &Row::load);
+    if constexpr (Archive::loading)
+      if (ar.applying()) c.log_read_ = kScanAll;
   }
 
  private:
@@ -47,8 +51,13 @@ class CrackRecord {
     std::int64_t step;
     Real deflection, load;
   };
+  void add(const Simulation& sim, std::size_t point, Real deflection, Real load);
+  void scan_all(const Simulation& sim, Real deflection, Real load);
+
+  static constexpr std::size_t kScanAll = static_cast<std::size_t>(-1);
   std::vector<std::uint8_t> broken_;
   std::vector<Row> rows_;
+  std::size_t log_read_ = kScanAll;  // entries of the simulation's log already visited
 };
 
 }  // namespace rcdem::io

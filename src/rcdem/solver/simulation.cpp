@@ -145,10 +145,8 @@ Energy Simulation::energy() const {
 }
 
 Index Simulation::damaged_points() const {
-  Index n = 0;
-  for (const LocalPointRecord& r : concrete_.state().point.records)
-    n += (r.history.damage > 0.0 && r.history.damage < 1.0);
-  return n;
+  const ContactState& cs = concrete_.state();
+  return cs.damaged_or_broken - cs.broken;
 }
 
 Index Simulation::broken_interface_points() const {
@@ -170,10 +168,6 @@ Real Simulation::max_axial_force() const {
   return m;
 }
 
-Index Simulation::broken_points() const {
-  Index n = 0;
-  for (const LocalPointRecord& r : concrete_.state().point.records) n += (r.history.damage >= 1.0);
-  return n;
-}
+Index Simulation::broken_points() const { return concrete_.state().broken; }
 
 }  // namespace rcdem

@@ -109,8 +109,14 @@ class Simulation {
   // Every concrete local point's damage D, current without a catch-up (a condensed contact's points
   // are intact: their stale histories hold D = 0, as the current ones would).
   PointDamage point_damage() const { return concrete_.state().point.damage(); }
+  // Kept by the step (ContactState's counters), not counted per call.
   Index damaged_points() const;  // 0 < D < 1, concrete contacts
   Index broken_points() const;   // D = 1, concrete contacts
+  // The concrete contacts in which points broke, one entry per contact and step since the
+  // simulation was made or restored (ContactState::broken_contact_log).
+  const std::vector<Index>& broken_contact_log() const {
+    return concrete_.state().broken_contact_log;
+  }
   Index broken_interface_points() const;
 
   // Steps without the damping term or plates, for verification tests.
