@@ -249,6 +249,16 @@ template <typename Law, bool kPointsOnly = false>
   return contact_points<Law, kPointsOnly>(law, in, cs, cond, c, f);
 }
 
+// The elastic energies of the visited contacts `visit[0, count)`, from their points, just after
+// the block evaluated them. Out of line: inlined, its code spent the unit's inlining budget and
+// left the point loop's Eigen operations as calls (regression.hot_loop_inlined).
+template <typename Law>
+[[gnu::noinline]] void keep_point_energies(const Law& law, const ContactNetwork& net,
+                                           const ContactState& cs, const Index* visit,
+                                           Index count, Real* energy) {
+  for (Index k = 0; k < count; ++k) energy[visit[k]] = cs.strain_energy(law, net, visit[k]);
+}
+
 // A block's transitions (PointTransitions), and the flag of each contact with a newly broken
 // point, which ContactState::tally_transitions collects after the loop.
 [[gnu::always_inline]] inline void note_transitions(ContactState& cs, Index c,
@@ -270,11 +280,15 @@ template <typename Law, bool kPointsOnly = false>
 // have had (the dissipation of a point's first inelastic step reads its previous forces).
 //
 // Every contact's point transitions are counted per block of CondensedBlock::kSize contacts
-// (ContactState::block_transitions), with or without `cond`.
+// (ContactState::block_transitions), with or without `cond`. With `cond` and `energy` (per
+// contact), each contact's elastic energy after the evaluation is stored there, while its data are
+// in cache: a condensed one's by the kernel (condensed_strain_energy's bits), the others' from
+// their points (ContactState::strain_energy). Without `cond` it is not (a run then sums the
+// energy after the step, as a pass over the contacts).
 template <typename Law>
 void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs,
                        ElasticCondensation* cond = nullptr,
-                       const ContactInputs* previous = nullptr) {
+                       const ContactInputs* previous = nullptr, Real* energy = nullptr) {
   constexpr Index kBlock = CondensedBlock::kSize;
   cs.size_blocks(in.net.contact_count(), kBlock);
   if (!cond) {
@@ -290,7 +304,7 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
   assert(in.pose && "the condensed kernel reads the bodies' poses");
   cond->any_condensed = true;  // cleared by the catch-up; harmless if none was
   const CondensedInputs ci{cond->sums, in.net.particle_a.data(), in.net.particle_b.data(), in.pose,
-                           in.net.contact_count()};
+                           in.net.contact_count(), energy};
   const Index blocks = (in.net.contact_count() + kBlock - 1) / kBlock;
   if (static_cast<Index>(cs.block_damage.size()) != blocks) {  // the first step only
     cs.block_damage.assign(static_cast<std::size_t>(blocks), 0.0);
@@ -317,6 +331,7 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
     for (Index k = 0; k < visits; ++k)
       note_transitions(cs, visit[k], contact_points(law, in, cs, cond, visit[k], frames[k]),
                        changed);
+    if (energy) keep_point_energies(law, in.net, cs, visit, visits, energy);
     cs.block_transitions[static_cast<std::size_t>(begin / kBlock)] = changed;
     // Contacts evaluated from their sums dissipate exactly zero, so the kernel does not store it
     // (16 bytes a contact less to write) and the block sums its visited contacts, in contact

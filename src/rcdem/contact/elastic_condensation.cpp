@@ -86,6 +86,37 @@ void ElasticCondensation::reset_flags(const ContactNetwork& net, const PointDama
 
 namespace {
 
+// A condensed contact's elastic energy (elastic_condensation.hpp) from the kernel's terms: K, alpha,
+// u_cn, u_c, n, D and J D^T (column-major, jd[i + 3 j] = (J D^T)_ij), with
+//   tr(D J D^T) = sum_ik D_ik (J D^T)_ki,  n^T D J D^T n = n . (D (J D^T n)).
+// Plain scalars in one fixed order, which the kernel writes out in its loop (called there, it kept
+// GCC from vectorising): the lanes and condensed_strain_energy give the same bits (tested).
+[[gnu::always_inline]] inline Real energy_from_terms(Real k, Real al, Real ucn, const Real* uc,
+                                                     const Real* n, const Real* d,
+                                                     const Real* jd) {
+  const Real v0 = jd[0] * n[0] + jd[3] * n[1] + jd[6] * n[2];  // J D^T n
+  const Real v1 = jd[1] * n[0] + jd[4] * n[1] + jd[7] * n[2];
+  const Real v2 = jd[2] * n[0] + jd[5] * n[1] + jd[8] * n[2];
+  const Real q = n[0] * (d[0] * v0 + d[3] * v1 + d[6] * v2) +
+                 n[1] * (d[1] * v0 + d[4] * v1 + d[7] * v2) +
+                 n[2] * (d[2] * v0 + d[5] * v1 + d[8] * v2);
+  const Real tr = (d[0] * jd[0] + d[3] * jd[1] + d[6] * jd[2]) +
+                  (d[1] * jd[3] + d[4] * jd[4] + d[7] * jd[5]) +
+                  (d[2] * jd[6] + d[5] * jd[7] + d[8] * jd[8]);
+  const Real uc_sq = uc[0] * uc[0] + uc[1] * uc[1] + uc[2] * uc[2];
+  return 0.5 * ((1 - al) * (k * ucn * ucn + q) + al * (k * uc_sq + tr));
+}
+
+// J D^T, column-major (jd[i + 3 j] = (J D^T)_ij), from J's six entries (xx, yy, zz, xy, xz, yz).
+[[gnu::always_inline]] inline void j_times_dt(const Real* jm, const Real* d, Real* jd) {
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      jd[i + 3 * j] = jm[i] * d[j] + jm[i + 3] * d[j + 3] + jm[i + 6] * d[j + 6];
+}
+
+// kEnergy: each contact's elastic energy is stored too (in.energy), for a step whose state a
+// history row reports.
+template <bool kEnergy>
 [[gnu::always_inline]] inline void condensed_block_lanes(const CondensedInputs& in, Index begin,
                                                          Index count, ContactState& cs,
                                                          CondensedBlock& out) {
@@ -103,6 +134,7 @@ namespace {
   Real* force_b = cs.force_b[begin].data();
   Real* torque_b = cs.torque_b[begin].data();
   Real* torque_a = cs.torque_a[begin].data();
+  Real* energy = kEnergy ? in.energy + begin : nullptr;
   const Index* pa = in.particle_a + begin;
   const Index* pb = in.particle_b + begin;
   constexpr Real kMargin = 1.0 - 1e-3;
@@ -160,10 +192,25 @@ namespace {
     for (int i = 0; i < 3; ++i) f[i] = -k_n[l] * (al * uc[i] + (1 - al) * ucn * n[i]);
     // P = S J D^T, J symmetric (xx, yy, zz, xy, xz, yz).
     const Real jm[9] = {jxx[l], jxy[l], jxz[l], jxy[l], jyy[l], jyz[l], jxz[l], jyz[l], jzz[l]};
-    Real jd[9];  // J D^T, column-major
+    Real jd[9];  // J D^T, column-major (as j_times_dt)
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j)
         jd[i + 3 * j] = jm[i] * d[j] + jm[i + 3] * d[j + 3] + jm[i + 6] * d[j + 6];
+    if constexpr (kEnergy) {
+      // energy_from_terms, written out (see there).
+      const Real v0 = jd[0] * n[0] + jd[3] * n[1] + jd[6] * n[2];
+      const Real v1 = jd[1] * n[0] + jd[4] * n[1] + jd[7] * n[2];
+      const Real v2 = jd[2] * n[0] + jd[5] * n[1] + jd[8] * n[2];
+      const Real q = n[0] * (d[0] * v0 + d[3] * v1 + d[6] * v2) +
+                     n[1] * (d[1] * v0 + d[4] * v1 + d[7] * v2) +
+                     n[2] * (d[2] * v0 + d[5] * v1 + d[8] * v2);
+      const Real tr = (d[0] * jd[0] + d[3] * jd[1] + d[6] * jd[2]) +
+                      (d[1] * jd[3] + d[4] * jd[4] + d[7] * jd[5]) +
+                      (d[2] * jd[6] + d[5] * jd[7] + d[8] * jd[8]);
+      const Real uc_sq = uc[0] * uc[0] + uc[1] * uc[1] + uc[2] * uc[2];
+      const Real kn = k_n[l];
+      energy[l] = 0.5 * ((1 - al) * (kn * ucn * ucn + q) + al * (kn * uc_sq + tr));
+    }
     Real p[9];
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j)
@@ -188,18 +235,21 @@ namespace {
 
 void condensed_block_lanes_baseline(const CondensedInputs& in, Index begin, Index count,
                                     ContactState& cs, CondensedBlock& out) {
-  condensed_block_lanes(in, begin, count, cs, out);
+  if (in.energy) return condensed_block_lanes<true>(in, begin, count, cs, out);
+  condensed_block_lanes<false>(in, begin, count, cs, out);
 }
 #if RCDEM_SIMD_MULTIVERSION
 RCDEM_SIMD_TARGET_AVX2 void condensed_block_lanes_avx2(const CondensedInputs& in, Index begin,
                                                        Index count, ContactState& cs,
                                                        CondensedBlock& out) {
-  condensed_block_lanes(in, begin, count, cs, out);
+  if (in.energy) return condensed_block_lanes<true>(in, begin, count, cs, out);
+  condensed_block_lanes<false>(in, begin, count, cs, out);
 }
 RCDEM_SIMD_TARGET_AVX512 void condensed_block_lanes_avx512(const CondensedInputs& in, Index begin,
                                                            Index count, ContactState& cs,
                                                            CondensedBlock& out) {
-  condensed_block_lanes(in, begin, count, cs, out);
+  if (in.energy) return condensed_block_lanes<true>(in, begin, count, cs, out);
+  condensed_block_lanes<false>(in, begin, count, cs, out);
 }
 #endif
 
@@ -220,25 +270,32 @@ void evaluate_condensed_block(const CondensedInputs& in, Index begin, Index coun
   condensed_block_lanes_baseline(in, begin, count, cs, out);
 }
 
-Real condensed_strain_energy(const CondensedSums& s, Index c, const Vec3& xa, const Vec3& xb,
-                             const Eigen::Matrix3d& ra, const Eigen::Matrix3d& rb) {
+Real condensed_strain_energy(const CondensedSums& s, Index c, const Real* pose, Index a,
+                             Index b) {
+  // The kernel's terms in the kernel's order (condensed_block_lanes above): the same bits.
   const auto i = static_cast<std::size_t>(c);
-  const Vec3 dx = xb - xa;
-  const Vec3 n = dx / std::sqrt(dx.squaredNorm());  // the kernel's normal
-  const Vec3 r0(s.offset0[0][i], s.offset0[1][i], s.offset0[2][i]);
-  const Vec3 rc(s.centroid[0][i], s.centroid[1][i], s.centroid[2][i]);
-  Vec3 u0;
-  for (int d = 0; d < 3; ++d)
-    u0[d] = offset_displacement(dx[d], rb(d, 0), rb(d, 1), rb(d, 2), r0.x(), r0.y(), r0.z());
-  const Eigen::Matrix3d dm = rb - ra;
-  const Vec3 uc = u0 + dm * rc;
-  Eigen::Matrix3d j;
-  j << s.j[0][i], s.j[3][i], s.j[4][i], s.j[3][i], s.j[1][i], s.j[5][i], s.j[4][i], s.j[5][i],
-      s.j[2][i];
-  const Eigen::Matrix3d djd = dm * j * dm.transpose();
-  const Real k = s.k_n[i], alpha = s.alpha[i], ucn = n.dot(uc);
-  return 0.5 * ((1 - alpha) * (k * ucn * ucn + n.dot(djd * n)) +
-                alpha * (k * uc.squaredNorm() + djd.trace()));
+  const Index ia = BodyPoses::kStride * a, ib = BodyPoses::kStride * b;
+  Real dx[3], n[3];
+  for (int k = 0; k < 3; ++k) dx[k] = pose[ib + k] - pose[ia + k];
+  const Real inv_len = 1.0 / std::sqrt(dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]);
+  for (int k = 0; k < 3; ++k) n[k] = dx[k] * inv_len;
+  Real ra[9], rb[9], d[9];
+  rotation_from_quaternion(pose[ia + 3], pose[ia + 4], pose[ia + 5], pose[ia + 6], ra);
+  rotation_from_quaternion(pose[ib + 3], pose[ib + 4], pose[ib + 5], pose[ib + 6], rb);
+  for (int e = 0; e < 9; ++e) d[e] = rb[e] - ra[e];
+  const Real rc[3] = {s.centroid[0][i], s.centroid[1][i], s.centroid[2][i]};
+  Real uc[3];
+  for (int k = 0; k < 3; ++k) {
+    const Real u0 = offset_displacement(dx[k], rb[k], rb[k + 3], rb[k + 6], s.offset0[0][i],
+                                        s.offset0[1][i], s.offset0[2][i]);
+    uc[k] = u0 + d[k] * rc[0] + d[k + 3] * rc[1] + d[k + 6] * rc[2];
+  }
+  const Real ucn = n[0] * uc[0] + n[1] * uc[1] + n[2] * uc[2];
+  const Real jm[9] = {s.j[0][i], s.j[3][i], s.j[4][i], s.j[3][i], s.j[1][i],
+                      s.j[5][i], s.j[4][i], s.j[5][i], s.j[2][i]};
+  Real jd[9];
+  j_times_dt(jm, d, jd);
+  return energy_from_terms(s.k_n[i], s.alpha[i], ucn, uc, n, d, jd);
 }
 
 Index ElasticCondensation::condensed_count() const {

@@ -90,17 +90,17 @@ struct CondensedInputs {
   const Index* particle_b;
   const Real* pose;  // the bodies' centres and orientations at the evaluation (BodyPoses)
   Index contact_count;
+  Real* energy = nullptr;  // per contact: where to store each one's elastic energy, if asked
 };
 
 // The elastic energy held by condensed contact c's points (sum of kn u_n^2 / 2 + ks |u_s|^2 / 2)
-// at the kinematics of the evaluation that condensed it (A's and B's centres and rotations), from
+// at the poses of the evaluation that condensed it (BodyPoses of A = particle_a[c] and B), from
 // its sums: with u = u_c + D rho over the points and sum kn rho = 0,
 //   E = ((1 - alpha) (K u_cn^2 + n^T D J D^T n) + alpha (K |u_c|^2 + tr(D J D^T))) / 2,
-// the points' own energy to rounding, without bringing their histories up to date (a history row
-// asks for the strain energy every few dozen steps; catching the histories up costs several
-// condensed steps).
-Real condensed_strain_energy(const CondensedSums& sums, Index c, const Vec3& xa, const Vec3& xb,
-                             const Eigen::Matrix3d& ra, const Eigen::Matrix3d& rb);
+// the points' own energy to rounding, without bringing their histories up to date. The same bits
+// as the kernel's, which stores it when asked (CondensedInputs::energy).
+Real condensed_strain_energy(const CondensedSums& sums, Index c, const Real* pose, Index a,
+                             Index b);
 
 // Contacts [begin, begin + count), count <= CondensedBlock::kSize; writes their entries of
 // force_b, torque_b, torque_a (not their dissipation: zero, and not read for them).

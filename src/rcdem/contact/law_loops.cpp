@@ -6,13 +6,13 @@
 namespace rcdem {
 
 void evaluate_contacts(const ContactLaw& law, const ContactInputs& in, ContactState& cs,
-                       ElasticCondensation* cond, const ContactInputs* previous) {
+                       ElasticCondensation* cond, const ContactInputs* previous, Real* energy) {
   std::visit(
       [&](const auto& l) {
         if constexpr (kCondensableLaw<std::decay_t<decltype(l)>>)
-          evaluate_contacts(l, in, cs, cond, previous);
+          evaluate_contacts(l, in, cs, cond, previous, energy);
         else
-          evaluate_contacts(l, in, cs);
+          evaluate_contacts(l, in, cs, nullptr, nullptr, energy);
       },
       law);
 }

@@ -9,10 +9,11 @@
 namespace rcdem {
 
 // evaluate_contacts (contact_loop.hpp) with the law `law` holds; `cond` and `previous` are used
-// only by a condensable law (kCondensableLaw), the others go through their points.
+// only by a condensable law (kCondensableLaw), the others go through their points; `energy`, per
+// contact, receives each one's elastic energy when given.
 void evaluate_contacts(const ContactLaw& law, const ContactInputs& in, ContactState& cs,
                        ElasticCondensation* cond = nullptr,
-                       const ContactInputs* previous = nullptr);
+                       const ContactInputs* previous = nullptr, Real* energy = nullptr);
 
 // catch_up_condensed (contact_loop.hpp) with the law `law` holds; nothing for a law that is not
 // condensable (its contacts are never condensed).

@@ -385,6 +385,7 @@ bool RunLoop::run(const std::function<void(const Simulation&)>& on_step) {
   PeakTracker peak(loop_);
   std::vector<RunObserver*> observers{&peak};
   HistoryRecorder rows(Trigger::every(loop_.history_every), history_, cracks_);
+  sim_.keep_strain_energy_every(loop_.history_every);  // each row's strain energy, from its step
   SnapshotRecorder snapshots(Trigger::every(loop_.snapshot_every), snapshots_, history_, out_);
   observers.push_back(&rows);
   observers.push_back(&snapshots);

@@ -40,7 +40,10 @@ void ConcreteContacts::evaluate(const StepContext& ctx) {
   now.pose = k.pose.ptr();
   const ContactInputs previous = inputs(k.position_prev, k.rotation_prev, ctx.clock.dt);
   ElasticCondensation* condensed = condensation_.sums.empty() ? nullptr : &condensation_;
-  evaluate_contacts(law_, now, contacts_, condensed, &previous);
+  energy_kept_ = ctx.report_strain_energy && condensed;  // the loop keeps them only then
+  if (energy_kept_) contact_energy_.resize(static_cast<std::size_t>(net_->contact_count()));
+  evaluate_contacts(law_, now, contacts_, condensed, &previous,
+                    energy_kept_ ? contact_energy_.data() : nullptr);
 }
 
 void ConcreteContacts::catch_up(Real dt) const {
@@ -112,10 +115,13 @@ void ConcreteContacts::add_strain_energy(Real& sum) const {
           // histories are stale), the others from their points.
           Real e = 0.0;
           for (Index c = begin; c < end; ++c) {
-            const Index a = net.particle_a[c], b = net.particle_b[c];
+            if (energy_kept_) {
+              e += contact_energy_[static_cast<std::size_t>(c)];
+              continue;
+            }
             e += condensed && condensation_.condensed[static_cast<std::size_t>(c)]
-                     ? condensed_strain_energy(condensation_.sums, c, k.position[a], k.position[b],
-                                               k.rotation[a], k.rotation[b])
+                     ? condensed_strain_energy(condensation_.sums, c, k.pose.ptr(),
+                                               net.particle_a[c], net.particle_b[c])
                      : contacts_.strain_energy(law, net, c);
           }
           strain_energy_blocks_[static_cast<std::size_t>(begin / kBlock)] = e;

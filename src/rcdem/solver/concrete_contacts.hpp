@@ -43,9 +43,11 @@ class ConcreteContacts final : public StepPart {
   template <class Archive, class Self>
   static void serialize(Archive& ar, Self& s) {
     ContactState::serialize(ar, "contacts", s.contacts_);
-    if constexpr (Archive::loading)
+    if constexpr (Archive::loading) {
+      if (ar.applying()) s.energy_kept_ = false;
       if (ar.applying() && !s.condensation_.sums.empty())
         s.condensation_.reset_flags(*s.net_, s.contacts_.point.damage());
+    }
   }
 
  private:
@@ -60,6 +62,9 @@ class ConcreteContacts final : public StepPart {
   mutable ElasticCondensation condensation_;  // empty when off or for a law that does not opt in
   BodyContacts body_contacts_;
   mutable std::vector<Real> strain_energy_blocks_;  // the strain energy's per-block sums
+  // Per contact, kept by the last evaluation when it was asked to (StepContext): energy_kept_.
+  std::vector<Real> contact_energy_;
+  bool energy_kept_ = false;
 };
 
 }  // namespace rcdem

@@ -89,6 +89,10 @@ class Simulation {
   // loop does not compute it every step: two divisions per local point).
   Energy energy() const;
   Real strain_energy() const;  // without bringing condensed contacts' histories up to date
+  // Steps whose number is a multiple of n (0: none) keep their strain energy while they evaluate
+  // (StepContext::report_strain_energy): a run sets its history's spacing, so that a row's
+  // strain_energy() costs no pass over the contacts. The value is the same either way.
+  void keep_strain_energy_every(std::int64_t n) { strain_energy_every_ = n; }
   // The ledger's running sums (work, kinetic energy, dissipation) without the strain energy
   // (left 0): no sweep over the local points, for use every step.
   const Energy& ledger() const { return energy_; }
@@ -133,7 +137,10 @@ class Simulation {
                                 const std::string& source);
   // Every spring of SPEC 6's estimates at t = 0, part by part.
   void visit_springs(SpringVisitor& v) const;
-  StepContext context() { return {bodies_, kinematics_, clock()}; }
+  StepContext context() {
+    return {bodies_, kinematics_, clock(),
+            strain_energy_every_ > 0 && (steps_ + 1) % strain_energy_every_ == 0};
+  }
   StepClock clock() const { return {time_, time_step_.dt, loading_rate_.factor()}; }
   void run_part_tasks();
   void check_stability() const;
@@ -160,6 +167,7 @@ class Simulation {
   LoadingRate loading_rate_;
   Real time_ = 0.0;
   std::int64_t steps_ = 0;
+  std::int64_t strain_energy_every_ = 0;  // keep_strain_energy_every
   Energy energy_;
 };
 

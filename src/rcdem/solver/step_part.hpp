@@ -49,6 +49,9 @@ struct StepContext {
   Bodies& bodies;
   const BodyKinematics& kinematics;
   StepClock clock;
+  // This step's state will be reported (a history row): a part that can keep its strain energy
+  // while evaluating does, so that add_strain_energy need not visit its contacts again.
+  bool report_strain_energy = false;
 };
 
 // Velocities imposed on bodies over the next move: translation at `velocity`, no rotation, no
