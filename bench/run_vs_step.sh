@@ -23,7 +23,7 @@ WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
 sets=(--set stop.steps="$STEPS" --set output.snapshots=0)
 [[ -n "${HISTORY_ROWS:-}" ]] && sets+=(--set output.history_rows="$HISTORY_ROWS")
-echo "# bench/run_vs_step.sh $SCENARIO $STEPS, $(date -u +%Y-%m-%dT%H:%M:%SZ), nproc $(nproc)," \
+echo "# bench/run_vs_step.sh $SCENARIO $STEPS, $(date -u +%Y-%m-%dT%H:%M:%SZ), nproc $(nproc --all)," \
      "\"$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//')\"," \
      "threads $OMP_NUM_THREADS, $("$BUILD/rcdem" --version)"
 ratios=()
