@@ -28,7 +28,6 @@ struct PointSums {
   Real newly_damaged = 0, newly_broken = 0;
 };
 
-
 // One local point of a contact, in the contact's frame (see evaluate_contacts): advances its
 // history by the law and returns what it adds to the contact's sums. A point is read from and
 // written to its record (local_point_records.hpp). BL's branches keep the loop over a contact's
@@ -250,8 +249,8 @@ template <typename Law, bool kPointsOnly = false>
 }
 
 // The elastic energies of the visited contacts `visit[0, count)`, from their points, just after
-// the block evaluated them. Out of line: inlined, its code spent the unit's inlining budget and
-// left the point loop's Eigen operations as calls (regression.hot_loop_inlined).
+// the block evaluated them. Out of line, so that the loop's own function stays small enough for
+// GCC to inline the point loop's Eigen operations (regression.hot_loop_inlined; CMakeLists.txt).
 template <typename Law>
 [[gnu::noinline]] void keep_point_energies(const Law& law, const ContactNetwork& net,
                                            const ContactState& cs, const Index* visit,
