@@ -45,6 +45,7 @@
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
 #include "rcdem/run/checkpoint.hpp"
+#include "rcdem/run/run_manifest.hpp"
 #include "rcdem/solver/simulation.hpp"
 #include "rcdem/specimens/specimen.hpp"
 
@@ -262,14 +263,6 @@ bool parse_args(int argc, char** argv, BenchArgs& a) {
   return true;
 }
 
-int current_threads() {
-#if defined(_OPENMP)
-  return omp_get_max_threads();
-#else
-  return 1;
-#endif
-}
-
 // Times STEPS steps REPEATS times from the simulation's present state and prints the result
 // lines (see the file's head). `setup_s` is reported as given.
 void time_and_report(rcdem::Simulation& sim, const BenchArgs& a, double setup_s) {
@@ -310,7 +303,7 @@ void time_and_report(rcdem::Simulation& sim, const BenchArgs& a, double setup_s)
       "local_point_steps_per_s=%.4g bytes_per_step=%.0f bytes_per_local_point=%.1f "
       "achieved_GBps=%.3f setup_seconds=%.2f condensed_contacts=%.0f cpu_seconds=%.4f "
       "repeat_seconds=%s strain_energy_seconds=%.5f end_strain_energy_J=%.17g\n",
-      a.path.c_str(), current_threads(), bodies, contacts, points, a.steps, seconds, rate,
+      a.path.c_str(), rcdem::io::thread_count(), bodies, contacts, points, a.steps, seconds, rate,
       rate * bodies, rate * contacts, rate * points, bytes, bytes / points, bytes * rate * 1e-9,
       setup_s, bc.condensed_contacts, cpu_seconds, repeat_seconds.c_str(), strain_energy_s,
       strain_energy);
