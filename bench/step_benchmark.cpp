@@ -301,11 +301,12 @@ void time_and_report(rcdem::Simulation& sim, const BenchArgs& a, double setup_s)
       "scenario=%s threads=%d bodies=%.0f contacts=%.0f local_points=%.0f steps=%ld "
       "seconds=%.4f steps_per_s=%.3f particle_steps_per_s=%.4g contact_steps_per_s=%.4g "
       "local_point_steps_per_s=%.4g bytes_per_step=%.0f bytes_per_local_point=%.1f "
-      "achieved_GBps=%.3f setup_seconds=%.2f condensed_contacts=%.0f cpu_seconds=%.4f "
+      "achieved_GBps=%.3f setup_seconds=%.2f condensed_contacts=%.0f held_contacts=%ld "
+      "cpu_seconds=%.4f "
       "repeat_seconds=%s strain_energy_seconds=%.5f end_strain_energy_J=%.17g\n",
       a.path.c_str(), rcdem::io::thread_count(), bodies, contacts, points, a.steps, seconds, rate,
       rate * bodies, rate * contacts, rate * points, bytes, bytes / points, bytes * rate * 1e-9,
-      setup_s, bc.condensed_contacts, cpu_seconds, repeat_seconds.c_str(), strain_energy_s,
+      setup_s, bc.condensed_contacts, static_cast<long>(sim.held_contacts()), cpu_seconds, repeat_seconds.c_str(), strain_energy_s,
       strain_energy);
   std::printf(
       "# bytes: per_local_point=%.0f x %.0f visited = %.4g; per_contact=%.0f x %.0f + "

@@ -362,6 +362,14 @@ void declare_solver(Declarations& s) {
               "to rounding) instead of visiting its points: faster, same results. false: visit "
               "every point every step."),
         Need::Default, &S::solver, &V::condense_elastic_contacts);
+  s.key(typed("solver.hold_unloading_contacts", KeyType::Boolean, Range{},
+              "With condense_elastic_contacts: evaluate a damaged concrete contact whose local "
+              "points all stay inside their envelopes (unloading or reloading elastically) from "
+              "sums kept since it entered them, instead of visiting its points. The same results "
+              "to rounding; a cracked specimen's step is faster. Off by default: snapshots and "
+              "checkpoints release the held contacts, so with it on the output schedule changes "
+              "results at the level of rounding (docs/model.md)."),
+        Need::Default, &S::solver, &V::hold_unloading_contacts);
 }
 
 // The plates.

@@ -7,9 +7,12 @@
 #include <cmath>
 #include <vector>
 
+#include "rcdem/contact/contact_frame.hpp"
 #include "rcdem/contact/contact_kinematics.hpp"
 #include "rcdem/contact/contact_state.hpp"
 #include "rcdem/contact/elastic_condensation.hpp"
+#include "rcdem/contact/held_contacts.hpp"
+#include "rcdem/contact/laws/law_registry.hpp"
 #include "rcdem/core/parallel.hpp"
 #include "rcdem/state/bodies.hpp"
 #include "rcdem/state/contact_network.hpp"
@@ -89,6 +92,23 @@ struct ContactInputs {
   const Real* pose = nullptr;  // BodyPoses of x and the orientations: needed with condensation
 };
 
+// Body i's centre and orientation at the evaluation: from its pose when the inputs have them (one
+// cache line per body, which the condensed kernel has just read for the block: B's centre, three
+// lines and its matrix two more, were the frames' largest cost), else from the arrays. The same
+// bits either way (rotation_from_quaternion is toRotationMatrix's arithmetic).
+[[gnu::always_inline]] inline Vec3 body_centre(const ContactInputs& in, Index i) {
+  if (!in.pose) return in.x[i];
+  const Real* p = in.pose + BodyPoses::kStride * i;
+  return Vec3(p[0], p[1], p[2]);
+}
+[[gnu::always_inline]] inline Eigen::Matrix3d body_rotation(const ContactInputs& in, Index i) {
+  if (!in.pose) return in.rotation[i];
+  const Real* p = in.pose + BodyPoses::kStride * i;
+  Real r[9];
+  rotation_from_quaternion(p[3], p[4], p[5], p[6], r);
+  return Eigen::Map<const Eigen::Matrix3d>(r);
+}
+
 // With `anchor0` (steel-concrete interface contacts, SPEC 8), B is a cylinder and the normal is the
 // component of (x_A - anchor) perpendicular to the cylinder's current axis, pointing from A to the
 // axis, anchor being the interface sphere's centre carried by the cylinder: the sphere
@@ -103,31 +123,17 @@ struct ContactInputs {
     return (d - d.dot(axis) * axis).normalized();
   }
   // Eigen's normalized() of this expression was not inlined: a call per contact, in the hot loop.
-  const Vec3 d = in.x[b] - in.x[a];
+  const Vec3 d = body_centre(in, b) - body_centre(in, a);
   return d / std::sqrt(d.squaredNorm());  // the same rounding as normalized()
 }
 
-// A contact's frame and the kinematics its points read: evaluate_contact's first half. The
-// blocked loop forms them for all the contacts of a block that visit their points before it visits
-// any point, so that the out-of-order core overlaps the contacts' chains of dependent operations
-// (normal, frame turn, products) instead of waiting on each between two contacts' ~100
-// instructions per point (measured in bench/RESULTS.md).
-struct ContactFrame {
-  Vec3 n, t1, t2;
-  Vec3 xa0;              // A's centre at t = 0
-  Vec3 dx;               // x_B - x_A
-  Vec3 disp0;            // E^T u0
-  Eigen::Matrix3d disp;  // E^T (R_B - R_A)
-  Eigen::Matrix3d arm;   // E^T (R_A + R_B) / 2
-  bool intact;           // every point intact: any frame will do
-};
-
-[[gnu::always_inline]] inline void contact_frame(const ContactInputs& in, ContactState& cs,
-                                                 const ElasticCondensation* cond, Index c,
-                                                 ContactFrame& f) {
-  const ContactNetwork& net = in.net;
-  const Index a = net.particle_a[c];
-  const Index b = net.particle_b[c];
+// The frame's axes n, t1 at this evaluation, turned from the stored ones (not yet stored: a held
+// contact, held_contacts.hpp, needs the stored frame if it has to catch up).
+[[gnu::always_inline]] inline void turned_frame(const ContactInputs& in, const ContactState& cs,
+                                                const ElasticCondensation* cond, Index c,
+                                                ContactFrame& f) {
+  const Index a = in.net.particle_a[c];
+  const Index b = in.net.particle_b[c];
   const Vec3 n = contact_normal(in, a, b, c);
   f.intact = cond && cond->intact[c];
   Vec3 t1;
@@ -139,19 +145,29 @@ struct ContactFrame {
     t1 = rot.turn_frame_axis(cs.tangent[c]);
     if (!(t1.squaredNorm() > 0.5)) t1 = any_perpendicular(n);  // only after a turn near 90 deg
   }
-  cs.normal[c] = n;
-  cs.tangent[c] = t1;
   f.n = n;
   f.t1 = t1;
-  f.t2 = n.cross(t1);
+}
+
+// The rest of the frame from its axes f.n, f.t1 and the kinematics `in`.
+[[gnu::always_inline]] inline void frame_kinematics(const ContactInputs& in,
+                                                    const ElasticCondensation* cond, Index c,
+                                                    ContactFrame& f) {
+  const Index a = in.net.particle_a[c];
+  const Index b = in.net.particle_b[c];
+  f.t2 = f.n.cross(f.t1);
   Eigen::Matrix3d frame_t;  // E^T: rows n, t1, t2
-  frame_t.row(0) = n.transpose();
-  frame_t.row(1) = t1.transpose();
+  frame_t.row(0) = f.n.transpose();
+  frame_t.row(1) = f.t1.transpose();
   frame_t.row(2) = f.t2.transpose();
-  const Eigen::Matrix3d& ra = in.rotation[a];
-  const Eigen::Matrix3d& rb = in.rotation[b];
-  f.dx = in.x[b] - in.x[a];
-  const Vec3 r0 = in.x0[b] - in.x0[a];
+  const Eigen::Matrix3d ra = body_rotation(in, a);
+  const Eigen::Matrix3d rb = body_rotation(in, b);
+  f.dx = body_centre(in, b) - body_centre(in, a);
+  // x_B0 - x_A0: from the condensation's sums when there are some (the same bits, and in cache,
+  // where B's centre at t = 0 is a line of its own).
+  const Vec3 r0 = cond ? Vec3(cond->sums.offset0[0][c], cond->sums.offset0[1][c],
+                              cond->sums.offset0[2][c])
+                       : Vec3(in.x0[b] - in.x0[a]);
   Vec3 u0;
   for (int i = 0; i < 3; ++i)
     u0[i] = offset_displacement(f.dx[i], rb(i, 0), rb(i, 1), rb(i, 2), r0.x(), r0.y(), r0.z());
@@ -159,6 +175,15 @@ struct ContactFrame {
   f.disp0 = frame_t * u0;
   f.arm = frame_t * (0.5 * (ra + rb));
   f.xa0 = in.x0[a];
+}
+
+[[gnu::always_inline]] inline void contact_frame(const ContactInputs& in, ContactState& cs,
+                                                 const ElasticCondensation* cond, Index c,
+                                                 ContactFrame& f) {
+  turned_frame(in, cs, cond, c, f);
+  cs.normal[c] = f.n;
+  cs.tangent[c] = f.t1;
+  frame_kinematics(in, cond, c, f);
 }
 
 // Asks for the cache lines that hold elements [begin, end) of an array (kWrite: to be written).
@@ -248,6 +273,20 @@ template <typename Law, bool kPointsOnly = false>
   return contact_points<Law, kPointsOnly>(law, in, cs, cond, c, f);
 }
 
+// Brings held contact c's points up to the evaluation `in` (the last one that held it), in the
+// frame stored by that evaluation, and releases it.
+template <typename Law>
+void catch_up_held(const Law& law, const ContactInputs& in, ContactState& cs,
+                   ElasticCondensation& cond, Index c) {
+  ContactFrame f;
+  f.n = cs.normal[c];
+  f.t1 = cs.tangent[c];
+  f.intact = false;
+  frame_kinematics(in, &cond, c, f);
+  contact_points<Law, true>(law, in, cs, &cond, c, f);
+  cond.held.held[c] = 0;
+}
+
 // The elastic energies of the visited contacts `visit[0, count)`, from their points, just after
 // the block evaluated them. Out of line, so that the loop's own function stays small enough for
 // GCC to inline the point loop's Eigen operations (regression.hot_loop_inlined; CMakeLists.txt).
@@ -266,6 +305,61 @@ template <typename Law>
   sum.damaged += t.damaged;
   sum.broken += t.broken;
   if (t.broken > 0) cs.newly_broken_contact[static_cast<std::size_t>(c)] = 1;
+}
+
+// A held contact's sums, requested while the block forms its frames (as prefetch_points).
+[[gnu::always_inline]] inline void prefetch_held(const HeldContacts& h, Index c) {
+  const char* p = reinterpret_cast<const char*>(&h.sums(c));
+  for (std::size_t k = 0; k < sizeof(HeldSums); k += 64) __builtin_prefetch(p + k);
+  __builtin_prefetch(p + sizeof(HeldSums) - 1);
+}
+
+// The held contacts `held[0, count)` of the block from `begin` (held_contacts.hpp), in their
+// frames `frames[c - begin]` (turned, not stored): from their sums while their points stay inside
+// their rooms. The others have their points brought up to the last evaluation (`previous`) from
+// the stored frame, are released and join the visited ones `visit[0, visits)`, kept in contact
+// order (the block's dissipation is summed in that order). Returns the new count of visits.
+template <typename Law>
+[[gnu::noinline]] Index evaluate_held_contacts(const Law& law, const ContactInputs& in,
+                                               const ContactInputs& previous, ContactState& cs,
+                                               ElasticCondensation& cond, const Index* held,
+                                               Index count, const ContactFrame* frames,
+                                               Index begin, Real* energy, Index* visit,
+                                               Index visits) {
+  const Index visited = visits;
+  for (Index k = 0; k < count; ++k) {
+    const Index c = held[k];
+    const ContactFrame& f = frames[c - begin];
+    if (!evaluate_held(cond.sums, c, cond.held.sums(c), f, cs, energy ? energy + c : nullptr)) {
+      prefetch_points(in.net, cs.point, c);
+      catch_up_held(law, previous, cs, cond, c);
+      visit[visits++] = c;
+    }
+    cs.normal[c] = f.n;
+    cs.tangent[c] = f.t1;
+  }
+  if (visits > visited) std::sort(visit, visit + visits);
+  return visits;
+}
+
+// The visited contacts `visit[0, count)` of the block from `begin`, just evaluated in their frames
+// `frames[c - begin]`, that are damaged and have every point inside its room are held from the
+// next step.
+[[gnu::noinline]] inline void hold_visited_contacts(const ContactNetwork& net,
+                                                    const ContactState& cs,
+                                                    ElasticCondensation& cond, const Index* visit,
+                                                    Index count, const ContactFrame* frames,
+                                                    Index begin) {
+  for (Index k = 0; k < count; ++k) {
+    const Index c = visit[k];
+    if (cond.intact[c] || !cond.eligible[c]) continue;
+    HeldSums h;
+    if (hold_contact(cond.sums, c, frames[c - begin], cs.point.data(), net.point_begin[c],
+                     net.point_begin[c + 1], h)) {
+      cond.held.sums(c) = h;
+      cond.held.held[c] = 1;
+    }
+  }
 }
 
 // The loop over a network's contacts. With `cond` (the concrete network under BL), an intact
@@ -312,24 +406,46 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
   parallel_for_blocks(in.net.contact_count(), kBlock, [&](Index begin, Index end) {
     CondensedBlock block;
     evaluate_condensed_block(ci, begin, end - begin, cs, block);
-    // The contacts that go through their points: every frame first, then every contact's points.
-    Index visit[CondensedBlock::kSize];
+    // The contacts that go through their points or are held: every frame first (by c - begin),
+    // then the held ones from their sums, then every visited contact's points.
+    Index visit[CondensedBlock::kSize], held[CondensedBlock::kSize];
     ContactFrame frames[CondensedBlock::kSize];
-    Index visits = 0;
+    Index visits = 0, helds = 0;
     for (Index c = begin; c < end; ++c) {
       const bool was_condensed = cond->condensed[c];
       const bool keep = cond->intact[c] && block.below_limits[c - begin];
       cond->condensed[c] = keep;
       if (keep) continue;
       if (was_condensed) evaluate_contact<Law, true>(law, *previous, cs, cond, c);
-      prefetch_points(in.net, cs.point, c);
-      contact_frame(in, cs, cond, c, frames[visits]);
-      visit[visits++] = c;
+      const bool is_held = kHoldableLaw<Law> && cond->held.held[c];
+      if (is_held)
+        prefetch_held(cond->held, c);
+      else
+        prefetch_points(in.net, cs.point, c);
+      ContactFrame& f = frames[c - begin];
+      turned_frame(in, cs, cond, c, f);
+      if (!is_held) {  // a held one's stored frame stays until it is known to stay held
+        cs.normal[c] = f.n;
+        cs.tangent[c] = f.t1;
+      }
+      frame_kinematics(in, cond, c, f);
+      if (is_held)
+        held[helds++] = c;
+      else
+        visit[visits++] = c;
     }
+    if constexpr (kHoldableLaw<Law>)
+      if (helds > 0)
+        visits = evaluate_held_contacts(law, in, *previous, cs, *cond, held, helds, frames, begin,
+                                        energy, visit, visits);
     PointTransitions changed;
     for (Index k = 0; k < visits; ++k)
-      note_transitions(cs, visit[k], contact_points(law, in, cs, cond, visit[k], frames[k]),
+      note_transitions(cs, visit[k],
+                       contact_points(law, in, cs, cond, visit[k], frames[visit[k] - begin]),
                        changed);
+    if constexpr (kHoldableLaw<Law>)
+      if (cond->held.enabled)
+        hold_visited_contacts(in.net, cs, *cond, visit, visits, frames, begin);
     if (energy) keep_point_energies(law, in.net, cs, visit, visits, energy);
     cs.block_transitions[static_cast<std::size_t>(begin / kBlock)] = changed;
     // Contacts evaluated from their sums dissipate exactly zero, so the kernel does not store it
@@ -383,6 +499,7 @@ void catch_up_condensed(const Law& law, const ContactInputs& in, ContactState& c
                         ElasticCondensation& cond) {
   if (!cond.any_condensed) return;
   parallel_for(in.net.contact_count(), [&](Index c) {
+    if (kHoldableLaw<Law> && cond.held.held[c]) catch_up_held(law, in, cs, cond, c);
     if (!cond.condensed[c]) return;
     evaluate_contact<Law, true>(law, in, cs, &cond, c);
     cond.condensed[c] = 0;

@@ -26,8 +26,10 @@ ElasticCondensation ElasticCondensation::build(const ContactNetwork& net,
   for (Index c = 0; c < net.contact_count(); ++c) {
     const auto i = static_cast<std::size_t>(c);
     const Index begin = net.point_begin[c], end = net.point_begin[c + 1];
-    if (end == begin) continue;
     const Vec3& xa0 = x0[net.particle_a[c]];
+    const Vec3 offset0 = x0[net.particle_b[c]] - xa0;  // as the point loop forms it
+    for (int d = 0; d < 3; ++d) k.offset0[d][i] = offset0[d];  // the frames read it too
+    if (end == begin) continue;
     const Real alpha = net.constants[begin].ks / net.constants[begin].kn;
     bool uniform = true;
     Real k_n = 0;
@@ -54,11 +56,7 @@ ElasticCondensation ElasticCondensation::build(const ContactNetwork& net,
     k.radius[i] = radius;
     k.u_n0[i] = u_n0;
     k.u_s0[i] = u_s0;
-    const Vec3 offset0 = x0[net.particle_b[c]] - xa0;  // as the point loop forms it
-    for (int d = 0; d < 3; ++d) {
-      k.centroid[d][i] = centroid[d];
-      k.offset0[d][i] = offset0[d];
-    }
+    for (int d = 0; d < 3; ++d) k.centroid[d][i] = centroid[d];
     k.j[0][i] = j(0, 0);
     k.j[1][i] = j(1, 1);
     k.j[2][i] = j(2, 2);
@@ -70,6 +68,7 @@ ElasticCondensation ElasticCondensation::build(const ContactNetwork& net,
   }
   e.intact = e.eligible;
   e.condensed.assign(nc, 0);
+  e.held.resize(net.contact_count());
   return e;
 }
 
@@ -81,6 +80,7 @@ void ElasticCondensation::reset_flags(const ContactNetwork& net, const PointDama
     intact[static_cast<std::size_t>(c)] = all_intact;
   }
   std::fill(condensed.begin(), condensed.end(), std::uint8_t{0});
+  held.clear();
   any_condensed = false;
 }
 

@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "rcdem/contact/contact_state.hpp"
+#include "rcdem/contact/held_contacts.hpp"
 #include "rcdem/core/types.hpp"
 #include "rcdem/state/body_poses.hpp"
 #include "rcdem/state/contact_network.hpp"
@@ -62,11 +63,12 @@ struct ElasticCondensation {
   std::vector<std::uint8_t> eligible;   // alpha uniform over the contact's points
   std::vector<std::uint8_t> intact;     // every point D = 0 (never set again once cleared)
   std::vector<std::uint8_t> condensed;  // the last evaluation used the sums (histories stale)
-  bool any_condensed = false;           // some flag above is set
+  bool any_condensed = false;           // some flag above is set, or a contact is held
+  HeldContacts held;                    // damaged contacts held to their sums (held_contacts.hpp)
 
   // From the network's points and the particles' centres at t = 0; every contact intact.
   static ElasticCondensation build(const ContactNetwork& net, const std::vector<Vec3>& x0);
-  // After a restart: intact from the points' damage, nothing condensed.
+  // After a restart: intact from the points' damage, nothing condensed or held.
   void reset_flags(const ContactNetwork& net, const PointDamage& damage);
   Index condensed_count() const;
   Index condensed_point_count(const ContactNetwork& net) const;  // their local points

@@ -14,8 +14,10 @@ ConcreteContacts::ConcreteContacts(const Scenario& sc, const ContactNetwork& net
       law_(make_contact_law(sc.law, sc.contact)),
       body_contacts_(BodyContacts::build(net, bodies.size())) {
   contacts_.init(net, bodies.position);
-  if (sc.solver.condense_elastic_contacts && condensable(law_))
+  if (sc.solver.condense_elastic_contacts && condensable(law_)) {
     condensation_ = ElasticCondensation::build(net, bodies.position0);
+    condensation_.held.enabled = sc.solver.hold_unloading_contacts;
+  }
 }
 
 ContactInputs ConcreteContacts::inputs(const std::vector<Vec3>& positions,
@@ -119,6 +121,10 @@ void ConcreteContacts::add_strain_energy(Real& sum) const {
               e += contact_energy_[static_cast<std::size_t>(c)];
               continue;
             }
+            if (condensed && condensation_.held.held[static_cast<std::size_t>(c)]) {
+              e += held_energy(c);
+              continue;
+            }
             e += condensed && condensation_.condensed[static_cast<std::size_t>(c)]
                      ? condensed_strain_energy(condensation_.sums, c, k.pose.ptr(),
                                                net.particle_a[c], net.particle_b[c])
@@ -131,6 +137,17 @@ void ConcreteContacts::add_strain_energy(Real& sum) const {
   Real e = 0.0;
   for (const Real block : strain_energy_blocks_) e += block;
   sum += e;
+}
+
+Real ConcreteContacts::held_energy(Index c) const {
+  // In the frame the last evaluation stored and its kinematics (dt is not read).
+  const ContactInputs last = inputs(kinematics_->position, kinematics_->rotation, 0.0);
+  ContactFrame f;
+  f.n = contacts_.normal[c];
+  f.t1 = contacts_.tangent[c];
+  f.intact = false;
+  frame_kinematics(last, &condensation_, c, f);
+  return held_strain_energy(condensation_.sums, c, condensation_.held.sums(c), f);
 }
 
 void ConcreteContacts::visit_springs(SpringVisitor& v, const Bodies& bodies) const {

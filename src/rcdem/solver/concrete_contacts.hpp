@@ -53,6 +53,7 @@ class ConcreteContacts final : public StepPart {
  private:
   ContactInputs inputs(const std::vector<Vec3>& positions,
                        const std::vector<Eigen::Matrix3d>& rotation, Real dt) const;
+  Real held_energy(Index c) const;  // held contact c's at the last evaluation
 
   const ContactNetwork* net_;
   const Bodies* bodies_;

@@ -71,6 +71,7 @@ class Simulation {
   // Concrete contacts evaluated from their sums at the last step (0 when condensation is off,
   // and after a read of the state above has brought their points up to date).
   Index condensed_contacts() const { return concrete_.condensation().condensed_count(); }
+  Index held_contacts() const { return concrete_.condensation().held.count(); }
   Index condensed_points() const {
     return concrete_.condensation().condensed_point_count(specimen_.contacts);
   }

@@ -38,6 +38,10 @@ struct BilinearSoftening {
   // An intact point below its limits holds fn = kn u_n, fs = -ks u_s exactly (the trial forces
   // below): its contact may be evaluated from its sums (law_registry.hpp, kCondensableLaw).
   static constexpr bool kCondensable = true;
+  // A point that caps neither force and raises neither maximum the damage reads is linear in the
+  // step's displacement with slopes kn, ks from where it stands (unloading keeps kn): its damaged
+  // contact may be held to its sums while that lasts (held_contacts.hpp, kHoldableLaw).
+  static constexpr bool kHoldable = true;
 
   // Ultimate displacements of the softening triangles (S2); independent of the point's area.
   Real u_nu() const { return 2 * G_fn / sigma_nt; }

@@ -69,4 +69,12 @@ template <typename Law>
 inline constexpr bool kCondensableLaw = Law::kCondensable;
 bool condensable(const ContactLaw& law);
 
+// Whether a condensable law's damaged contacts may be held to their sums while their points stay
+// inside their envelopes (contact/held_contacts.hpp): the law's kHoldable, an opt-in trait.
+template <typename Law>
+inline constexpr bool kHoldableLaw = false;
+template <typename Law>
+  requires(Law::kHoldable)
+inline constexpr bool kHoldableLaw<Law> = true;
+
 }  // namespace rcdem

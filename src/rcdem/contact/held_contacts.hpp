@@ -1,0 +1,88 @@
+#pragma once
+// Damaged contacts held to their sums while every point stays inside its envelope (issue 43).
+//
+// Most damaged contacts of a cracked specimen unload or reload elastically: a crack has opened
+// and the material around it relaxes. Under BL (BilinearSoftening::update) a point whose step
+// caps neither force, raises no damage and grows no maximum the damage reads is linear in the
+// step's displacement, with slopes kn and ks from where it stands:
+//   phi_J(t) = phi_J(t0) - kn_J L du_J,   L = diag(1, alpha, alpha),  du_J = u_J(t) - u_J(t0),
+// phi = (-fn, fs_1, fs_2) the force on B in the contact's frame. In the frame, u_J = disp0 +
+// disp r_J (contact_loop.hpp), so du_J = d0 + dD r_J with d0 = disp0(t) - disp0(t0) and
+// dD = disp(t) - disp(t0), whatever the frame did in between (the points keep their shear
+// history as frame components). With r_J = r_c + rho_J around the kn-weighted centroid
+// (sum kn rho = 0), K and J = sum kn rho rho^T as the intact condensation keeps them
+// (elastic_condensation.hpp), and du_c = d0 + dD r_c:
+//   force      sum phi_J = Phi0 - K L du_c
+//   moment     sum a_J x phi_J = a_c x sum phi + eps : (arm Q) - eps : (arm J dD^T L),
+//              a_c = disp0 / 2 + arm r_c,  Q = sum rho_J phi_J(t0)^T,
+//              (eps : P)_i = P_jk - P_kj for (i, j, k) cyclic,
+//   energy     sum E_J = E0 - (Phi0 . du_c + sum_ik dD_ik Q_ki)
+//                          + (K du_c^T L du_c + sum_k L_k (dD J dD^T)_kk) / 2,
+// E_J = phi_J^T L^-1 phi_J / (2 kn_J), the spring energy (SPEC 11). Phi0, Q, E0 and the entry's
+// disp0, disp are 27 numbers per held contact, against 6 points' 768 bytes.
+//
+// Whether the points stay linear is decided by a bound, as for the intact ones: |du_J - du_c| <=
+// |dD|_F max|rho| = e, and the contact stays held while du_cn + e < room_n and |du_cs| + e <
+// room_s, the smallest room of its points at entry:
+//   normal: to the cap, ((1 - D) fn_max - fn) / kn, and to the largest un the damage does not
+//           read, max(un_max, u_n0) - un (below u_n0 = fn_max / kn no damage is read);
+//   shear:  to the cap without friction, ((1 - D) c_max - |fs|) / ks (friction only widens it),
+//           and max(|us|_max, u_s0) - |us|.
+// A held contact that leaves its room first has its points brought up to the last step (one
+// elastic update from the entry's histories: what the point loop would have stored, to rounding,
+// except a maximum below its elastic limit, which nothing reads and which a held step does not
+// raise), then goes through its points as usual. Held or not, the law's result is the same to
+// rounding; what changes is the arithmetic (sums, and the catch-up's one step for several).
+#include <cstdint>
+#include <vector>
+
+#include "rcdem/contact/contact_frame.hpp"
+#include "rcdem/contact/contact_state.hpp"
+#include "rcdem/core/types.hpp"
+
+namespace rcdem {
+
+struct CondensedSums;  // elastic_condensation.hpp
+
+// What a held contact keeps from its entry (formulas above), frame components.
+struct HeldSums {
+  Real phi0[3];        // sum phi_J(t0)
+  Real q[9];           // Q = sum rho_J phi_J(t0)^T, row-major: q[3 k + i] = sum rho_k phi_i
+  Real energy0;        // sum E_J(t0)
+  Real room_n, room_s;  // the bound's rooms
+  Real disp0[3];       // disp0(t0)
+  Real disp[9];        // disp(t0), row-major
+};
+
+// The held contacts of a network: a flag per contact and, per block of kBlock contacts (the
+// contact loop's, CondensedBlock::kSize) that has held one, the block's sums (allocated by the thread that evaluates the block,
+// so only cracked regions take memory).
+struct HeldContacts {
+  static constexpr Index kBlock = 128;
+  bool enabled = false;                      // solver.hold_unloading_contacts
+  std::vector<std::uint8_t> held;            // per contact
+  std::vector<std::vector<HeldSums>> block;  // per block, empty until one of its contacts is held
+
+  void resize(Index contacts);
+  HeldSums& sums(Index c);  // c's, its block allocated if needed (only its block's thread)
+  const HeldSums& sums(Index c) const;
+  Index count() const;
+  void clear();  // nothing held (the sums stay allocated)
+};
+
+// Whether contact c, just evaluated through its points in the frame `f`, is held from the next
+// step: every point of it inside its room; if so, h receives its sums.
+bool hold_contact(const CondensedSums& sums, Index c, const ContactFrame& f,
+                  const LocalPointRecord* points, Index begin, Index end, HeldSums& h);
+
+// Held contact c in this evaluation's frame `f` (turned, not stored): if every point stays inside
+// its room, stores its force and torques in cs (and its energy in *energy, if given) and returns
+// true; otherwise returns false and stores nothing.
+bool evaluate_held(const CondensedSums& sums, Index c, const HeldSums& h, const ContactFrame& f,
+                   ContactState& cs, Real* energy);
+
+// The elastic energy of held contact c in the frame and kinematics `f`, from its sums.
+Real held_strain_energy(const CondensedSums& sums, Index c, const HeldSums& h,
+                        const ContactFrame& f);
+
+}  // namespace rcdem
