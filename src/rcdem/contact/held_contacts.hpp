@@ -33,6 +33,11 @@
 // except a maximum below its elastic limit, which nothing reads and which a held step does not
 // raise), then goes through its points as usual. Held or not, the law's result is the same to
 // rounding; what changes is the arithmetic (sums, and the catch-up's one step for several).
+// Reading the points (snapshots, checkpoints: Simulation::contacts()) catches the held contacts
+// up and releases them, so a restart gives the bits of the run that wrote the checkpoint, but the
+// output schedule changes a run at the level of rounding: solver.hold_unloading_contacts is off by
+// default (docs/model.md). A held contact still costs its frame, turned every step as a visited
+// one's, which in a cracked cube is most of a visit's cost (bench/RESULTS.md).
 #include <cstdint>
 #include <vector>
 
