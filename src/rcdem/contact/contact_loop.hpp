@@ -314,29 +314,47 @@ template <typename Law>
   __builtin_prefetch(p + sizeof(HeldSums) - 1);
 }
 
-// The held contacts `held[0, count)` of the block from `begin` (held_contacts.hpp), in their
-// frames `frames[c - begin]` (turned, not stored): from their sums while their points stay inside
-// their rooms. The others have their points brought up to the last evaluation (`previous`) from
-// the stored frame, are released and join the visited ones `visit[0, visits)`, kept in contact
-// order (the block's dissipation is summed in that order). Returns the new count of visits.
+// The held contacts `held[0, count)` of the block from `begin` (held_contacts.hpp): from their
+// sums in SIMD lanes while their points stay inside their rooms. The others have their points
+// brought up to the last evaluation (`previous`) in the stored frame, are released, get their
+// frame in `frames[c - begin]` and join the visited ones `visit[0, visits)`, kept in contact order
+// (the block's dissipation is summed in that order). Returns the new count of visits.
 template <typename Law>
 [[gnu::noinline]] Index evaluate_held_contacts(const Law& law, const ContactInputs& in,
                                                const ContactInputs& previous, ContactState& cs,
                                                ElasticCondensation& cond, const Index* held,
-                                               Index count, const ContactFrame* frames,
-                                               Index begin, Real* energy, Index* visit,
-                                               Index visits) {
+                                               Index count, ContactFrame* frames, Index begin,
+                                               Real* energy, Index* visit, Index visits) {
+  const HeldInputs hi{cond.sums,
+                      in.net.particle_a.data(),
+                      in.net.particle_b.data(),
+                      in.pose,
+                      in.w->data(),
+                      cs.normal.data()->data(),
+                      cs.tangent.data()->data(),
+                      in.dt,
+                      reinterpret_cast<const Real*>(&cond.held.sums(begin)),
+                      begin};
+  HeldOutputs out;
+  evaluate_held_block(hi, held, count, energy != nullptr, out);
   const Index visited = visits;
   for (Index k = 0; k < count; ++k) {
     const Index c = held[k];
-    const ContactFrame& f = frames[c - begin];
-    if (!evaluate_held(cond.sums, c, cond.held.sums(c), f, cs, energy ? energy + c : nullptr)) {
-      prefetch_points(in.net, cs.point, c);
-      catch_up_held(law, previous, cs, cond, c);
-      visit[visits++] = c;
+    if (out.kept[k]) {
+      cs.force_b[c] = Vec3(out.force[0][k], out.force[1][k], out.force[2][k]);
+      cs.torque_b[c] = Vec3(out.torque_b[0][k], out.torque_b[1][k], out.torque_b[2][k]);
+      cs.torque_a[c] = Vec3(out.torque_a[0][k], out.torque_a[1][k], out.torque_a[2][k]);
+      cs.normal[c] = Vec3(out.n[0][k], out.n[1][k], out.n[2][k]);
+      cs.tangent[c] = Vec3(out.t1[0][k], out.t1[1][k], out.t1[2][k]);
+      cs.dissipated_damage[c] = 0.0;
+      cs.dissipated_friction[c] = 0.0;
+      if (energy) energy[c] = out.energy[k];
+      continue;
     }
-    cs.normal[c] = f.n;
-    cs.tangent[c] = f.t1;
+    prefetch_points(in.net, cs.point, c);
+    catch_up_held(law, previous, cs, cond, c);
+    contact_frame(in, cs, &cond, c, frames[c - begin]);
+    visit[visits++] = c;
   }
   if (visits > visited) std::sort(visit, visit + visits);
   return visits;
@@ -345,16 +363,18 @@ template <typename Law>
 // The visited contacts `visit[0, count)` of the block from `begin`, just evaluated in their frames
 // `frames[c - begin]`, that are damaged and have every point inside its room are held from the
 // next step.
-[[gnu::noinline]] inline void hold_visited_contacts(const ContactNetwork& net,
+[[gnu::noinline]] inline void hold_visited_contacts(const ContactInputs& in,
                                                     const ContactState& cs,
                                                     ElasticCondensation& cond, const Index* visit,
                                                     Index count, const ContactFrame* frames,
                                                     Index begin) {
+  const ContactNetwork& net = in.net;
   for (Index k = 0; k < count; ++k) {
     const Index c = visit[k];
     if (cond.intact[c] || !cond.eligible[c]) continue;
     HeldSums h;
-    if (hold_contact(cond.sums, c, frames[c - begin], cs.point.data(), net.point_begin[c],
+    if (hold_contact(cond.sums, c, frames[c - begin], in.pose, net.particle_a[c],
+                     net.particle_b[c], cs.point.data(), net.point_begin[c],
                      net.point_begin[c + 1], h)) {
       cond.held.sums(c) = h;
       cond.held.held[c] = 1;
@@ -417,22 +437,14 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
       cond->condensed[c] = keep;
       if (keep) continue;
       if (was_condensed) evaluate_contact<Law, true>(law, *previous, cs, cond, c);
-      const bool is_held = kHoldableLaw<Law> && cond->held.held[c];
-      if (is_held)
+      if (kHoldableLaw<Law> && cond->held.held[c]) {  // its frame comes with its sums
         prefetch_held(cond->held, c);
-      else
-        prefetch_points(in.net, cs.point, c);
-      ContactFrame& f = frames[c - begin];
-      turned_frame(in, cs, cond, c, f);
-      if (!is_held) {  // a held one's stored frame stays until it is known to stay held
-        cs.normal[c] = f.n;
-        cs.tangent[c] = f.t1;
-      }
-      frame_kinematics(in, cond, c, f);
-      if (is_held)
         held[helds++] = c;
-      else
-        visit[visits++] = c;
+        continue;
+      }
+      prefetch_points(in.net, cs.point, c);
+      contact_frame(in, cs, cond, c, frames[c - begin]);
+      visit[visits++] = c;
     }
     if constexpr (kHoldableLaw<Law>)
       if (helds > 0)
@@ -445,7 +457,7 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
                        changed);
     if constexpr (kHoldableLaw<Law>)
       if (cond->held.enabled)
-        hold_visited_contacts(in.net, cs, *cond, visit, visits, frames, begin);
+        hold_visited_contacts(in, cs, *cond, visit, visits, frames, begin);
     if (energy) keep_point_energies(law, in.net, cs, visit, visits, energy);
     cs.block_transitions[static_cast<std::size_t>(begin / kBlock)] = changed;
     // Contacts evaluated from their sums dissipate exactly zero, so the kernel does not store it

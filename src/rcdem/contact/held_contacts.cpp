@@ -4,7 +4,11 @@
 #include <cmath>
 #include <limits>
 
+#include "rcdem/contact/contact_kinematics.hpp"
 #include "rcdem/contact/elastic_condensation.hpp"
+#include "rcdem/core/simd_level.hpp"
+#include "rcdem/core/small_angle.hpp"
+#include "rcdem/state/body_poses.hpp"
 
 namespace rcdem {
 
@@ -55,134 +59,311 @@ void point_rooms(const LocalPointRecord& p, Real& room_n, Real& room_s) {
   room_s = std::min(to_cap_s, us_limit - us) - kRounding * (us_limit + us);
 }
 
-// du_c = d0 + dD r_c and dD (row-major) since the entry, in the frame f.
-struct Change {
-  Real du[3], dd[9];
+// The frame's third axis and what the points of a held contact read of the kinematics, from the
+// axes n, t1, the orientations ra, rb (column-major) and dx = x_B - x_A, r0 = x_B0 - x_A0: the
+// products of contact_loop.hpp's frame_kinematics on plain scalars (rows of disp and arm: r).
+// Arrays by reference, not pointer: a local array whose address is taken in a SIMD loop becomes a
+// per-lane array in memory that GCC cannot store to.
+[[gnu::always_inline]] inline void held_kinematics(const Real (&n)[3], const Real (&t1)[3],
+                                                   const Real (&ra)[9], const Real (&rb)[9],
+                                                   const Real (&dx)[3], const Real (&r0)[3],
+                                                   Real (&disp0)[3], Real (&disp)[9],
+                                                   Real (&arm)[9]) {
+  // E^T, row-major: rows n, t1, t2 = n x t1.
+  const Real e[9] = {n[0],  n[1],  n[2],  t1[0], t1[1], t1[2], n[1] * t1[2] - n[2] * t1[1],
+                     n[2] * t1[0] - n[0] * t1[2], n[0] * t1[1] - n[1] * t1[0]};
+  Real u0[3];
+  for (int i = 0; i < 3; ++i)
+    u0[i] = offset_displacement(dx[i], rb[i], rb[i + 3], rb[i + 6], r0[0], r0[1], r0[2]);
+  for (int r = 0; r < 3; ++r) {
+    disp0[r] = e[3 * r] * u0[0] + e[3 * r + 1] * u0[1] + e[3 * r + 2] * u0[2];
+    for (int k = 0; k < 3; ++k) {
+      disp[3 * r + k] = e[3 * r] * (rb[3 * k] - ra[3 * k]) +
+                        e[3 * r + 1] * (rb[3 * k + 1] - ra[3 * k + 1]) +
+                        e[3 * r + 2] * (rb[3 * k + 2] - ra[3 * k + 2]);
+      arm[3 * r + k] = e[3 * r] * (0.5 * (ra[3 * k] + rb[3 * k])) +
+                       e[3 * r + 1] * (0.5 * (ra[3 * k + 1] + rb[3 * k + 1])) +
+                       e[3 * r + 2] * (0.5 * (ra[3 * k + 2] + rb[3 * k + 2]));
+    }
+  }
+}
+
+// The sums' numbers in HeldSums order (phi0, q, energy0, room_n, room_s, disp0, disp).
+constexpr int kHeldSize = 27;
+static_assert(sizeof(HeldSums) == kHeldSize * sizeof(Real), "HeldSums is 27 doubles");
+
+// du_c = d0 + dD r_c and dD (row-major) since the entry, from the sums `h` (HeldSums order).
+template <typename H>
+[[gnu::always_inline]] inline void change_since_entry(const H& h, const Real (&rc)[3],
+                                                      const Real (&disp0)[3],
+                                                      const Real (&disp)[9], Real (&du)[3],
+                                                      Real (&dd)[9]) {
+  for (int r = 0; r < 3; ++r) {
+    for (int k = 0; k < 3; ++k) dd[3 * r + k] = disp[3 * r + k] - h[18 + 3 * r + k];
+    du[r] = (disp0[r] - h[15 + r]) + (dd[3 * r] * rc[0] + dd[3 * r + 1] * rc[1] + dd[3 * r + 2] * rc[2]);
+  }
+}
+
+// The energy (held_contacts.hpp) from the change, K, alpha and J (row-major).
+template <typename H>
+[[gnu::always_inline]] inline Real energy_from_change(const H& h, Real k, Real al,
+                                                      const Real (&jm)[9], const Real (&du)[3],
+                                                      const Real (&dd)[9]) {
+  const Real l[3] = {1.0, al, al};
+  Real work = 0.0, quad = 0.0;
+  for (int r = 0; r < 3; ++r) {
+    work += h[r] * du[r];
+    quad += k * l[r] * du[r] * du[r];
+    Real djd = 0.0;  // (dD J dD^T)_rr
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) djd += dd[3 * r + a] * jm[3 * a + b] * dd[3 * r + b];
+    quad += l[r] * djd;
+    for (int m = 0; m < 3; ++m) work += dd[3 * r + m] * h[3 + 3 * m + r];  // dD_rm Q_mr
+  }
+  return h[12] - work + 0.5 * quad;
+}
+
+// A block's held contacts `list[0, count)` (kHeld: with their energies), in SIMD lanes: the turned
+// frame (SPEC 4, PlaneRotation's arithmetic), the kinematics, the bound and the sums' force and
+// moment. A lane whose turn leaves the common case (normal turned past 120 degrees, spin of
+// 0.1 rad or more, degenerate axis) is not kept: the caller releases it to the point loop, whose
+// scalar frame handles those.
+constexpr Index kLanes = HeldContacts::kBlock;
+struct HeldLanes {
+  Real no[3][kLanes], to[3][kLanes], wsum[3][kLanes], r0[3][kLanes], rc[3][kLanes], j[6][kLanes];
+  Real h[kHeldSize][kLanes];
+  Real kn[kLanes], al[kLanes], radius[kLanes];
+  Real pa[7][kLanes], pb[7][kLanes];  // A's and B's poses: x, then the quaternion (w, x, y, z)
 };
 
-Change change_since_entry(const CondensedSums& sums, std::size_t i, const HeldSums& h,
-                          const ContactFrame& f) {
-  Change ch;
-  const Real rc[3] = {sums.centroid[0][i], sums.centroid[1][i], sums.centroid[2][i]};
-  for (int r = 0; r < 3; ++r) {
-    for (int k = 0; k < 3; ++k) ch.dd[3 * r + k] = f.disp(r, k) - h.disp[3 * r + k];
-    ch.du[r] = (f.disp0[r] - h.disp0[r]) +
-               (ch.dd[3 * r] * rc[0] + ch.dd[3 * r + 1] * rc[1] + ch.dd[3 * r + 2] * rc[2]);
+// Lane l's HeldSums, read in place (a copy into a local array kept GCC from vectorising).
+struct LaneSums {
+  const HeldLanes& g;
+  Index l;
+  [[gnu::always_inline]] Real operator[](int k) const { return g.h[k][l]; }
+};
+
+template <bool kEnergy>
+[[gnu::always_inline]] inline void held_block_lanes(const HeldInputs& in, const Index* list,
+                                                    Index count, HeldLanes& g, HeldOutputs& out) {
+  // Every lane's numbers, gathered into arrays indexed by the lane before the lanes run: loads
+  // through a gathered contact number, and 64-bit products by 3 or 27 (no SIMD instruction below
+  // AVX-512DQ), kept GCC from vectorising the loop.
+  const CondensedSums& s = in.sums;
+  for (Index l = 0; l < count; ++l) {
+    const Index c = list[l], a = in.particle_a[c], b = in.particle_b[c];
+    const auto i = static_cast<std::size_t>(c);
+    for (int k = 0; k < 3; ++k) {
+      g.no[k][l] = in.normal[3 * c + k];
+      g.to[k][l] = in.tangent[3 * c + k];
+      g.wsum[k][l] = in.w[3 * a + k] + in.w[3 * b + k];
+      g.r0[k][l] = s.offset0[k][i];
+      g.rc[k][l] = s.centroid[k][i];
+    }
+    for (int k = 0; k < 6; ++k) g.j[k][l] = s.j[k][i];
+    const Real* h = in.held_sums + kHeldSize * (c - in.begin);
+    for (int k = 0; k < kHeldSize; ++k) g.h[k][l] = h[k];
+    g.kn[l] = s.k_n[i];
+    g.al[l] = s.alpha[i];
+    g.radius[l] = s.radius[i];
+    for (int k = 0; k < 7; ++k) {
+      g.pa[k][l] = in.pose[BodyPoses::kStride * a + k];
+      g.pb[k][l] = in.pose[BodyPoses::kStride * b + k];
+    }
   }
-  return ch;
+  const Real dt = in.dt;
+#pragma omp simd
+  for (Index l = 0; l < count; ++l) {
+    const LaneSums hl{g, l};
+    Real dx[3], n[3], no[3], to[3];
+    for (int i = 0; i < 3; ++i) {
+      dx[i] = g.pb[i][l] - g.pa[i][l];
+      no[i] = g.no[i][l];
+      to[i] = g.to[i][l];
+    }
+    const Real inv_len = 1.0 / std::sqrt(dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2]);
+    for (int i = 0; i < 3; ++i) n[i] = dx[i] * inv_len;
+    // R v = c v + k x v + k (k.v) / (1 + c), k = n_old x n, c = n_old . n.
+    const Real kk[3] = {no[1] * n[2] - no[2] * n[1], no[2] * n[0] - no[0] * n[2],
+                        no[0] * n[1] - no[1] * n[0]};
+    const Real cc = no[0] * n[0] + no[1] * n[1] + no[2] * n[2];
+    const Real kt = (kk[0] * to[0] + kk[1] * to[1] + kk[2] * to[2]) / (1.0 + cc);
+    Real r[3] = {cc * to[0] + (kk[1] * to[2] - kk[2] * to[1]) + kt * kk[0],
+                 cc * to[1] + (kk[2] * to[0] - kk[0] * to[2]) + kt * kk[1],
+                 cc * to[2] + (kk[0] * to[1] - kk[1] * to[0]) + kt * kk[2]};
+    // About n by the pair's spin: cos(spin) r + sin(spin) n x r.
+    const Real spin = 0.5 * dt * (g.wsum[0][l] * n[0] + g.wsum[1][l] * n[1] + g.wsum[2][l] * n[2]);
+    Real cos_spin, sinc;
+    small_angle_cos_sinc(spin * spin, cos_spin, sinc);
+    const Real sin_spin = spin * sinc;
+    const Real nr[3] = {n[1] * r[2] - n[2] * r[1], n[2] * r[0] - n[0] * r[2],
+                        n[0] * r[1] - n[1] * r[0]};
+    for (int i = 0; i < 3; ++i) r[i] = cos_spin * r[i] + sin_spin * nr[i];
+    const Real rn = r[0] * n[0] + r[1] * n[1] + r[2] * n[2];
+    for (int i = 0; i < 3; ++i) r[i] -= rn * n[i];
+    const Real r2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
+    const Real inv_r = 1.0 / std::sqrt(r2);
+    const Real t1[3] = {r[0] * inv_r, r[1] * inv_r, r[2] * inv_r};
+    Real ra[9], rb[9], disp0[3], disp[9], arm[9];
+    rotation_from_quaternion(g.pa[3][l], g.pa[4][l], g.pa[5][l], g.pa[6][l], ra);
+    rotation_from_quaternion(g.pb[3][l], g.pb[4][l], g.pb[5][l], g.pb[6][l], rb);
+    const Real r0[3] = {g.r0[0][l], g.r0[1][l], g.r0[2][l]};
+    held_kinematics(n, t1, ra, rb, dx, r0, disp0, disp, arm);
+    const Real rc[3] = {g.rc[0][l], g.rc[1][l], g.rc[2][l]};
+    Real du[3], dd[9];
+    change_since_entry(hl, rc, disp0, disp, du, dd);
+    Real dd_sq = 0.0;
+    for (int e = 0; e < 9; ++e) dd_sq += dd[e] * dd[e];
+    const Real spread = std::sqrt(dd_sq) * g.radius[l];
+    const Real du_s = std::sqrt(du[1] * du[1] + du[2] * du[2]);
+    out.kept[l] = (cc > -0.5) & is_small_angle(spin * spin) & (r2 > 0.25) &
+                  (du[0] + spread < hl[13]) & (du_s + spread < hl[14]);
+    // Force and moment in the frame (held_contacts.hpp), then in the world.
+    const Real kn = g.kn[l], al = g.al[l];
+    const Real lam[3] = {1.0, al, al};
+    // J's six entries are xx, yy, zz, xy, xz, yz.
+    const Real jm[9] = {g.j[0][l], g.j[3][l], g.j[4][l], g.j[3][l], g.j[1][l],
+                        g.j[5][l], g.j[4][l], g.j[5][l], g.j[2][l]};
+    Real phi[3], ac[3];
+    for (int i = 0; i < 3; ++i) {
+      phi[i] = hl[i] - kn * lam[i] * du[i];
+      ac[i] = 0.5 * disp0[i] + (arm[3 * i] * rc[0] + arm[3 * i + 1] * rc[1] + arm[3 * i + 2] * rc[2]);
+    }
+    Real aj[9], aq[9], p[9];  // arm J, arm Q, arm J dD^T L (row-major)
+    for (int i = 0; i < 3; ++i)
+      for (int m = 0; m < 3; ++m) {
+        aj[3 * i + m] = arm[3 * i] * jm[m] + arm[3 * i + 1] * jm[3 + m] + arm[3 * i + 2] * jm[6 + m];
+        aq[3 * i + m] = arm[3 * i] * hl[3 + m] + arm[3 * i + 1] * hl[6 + m] +
+                        arm[3 * i + 2] * hl[9 + m];
+      }
+    for (int i = 0; i < 3; ++i)
+      for (int m = 0; m < 3; ++m)
+        p[3 * i + m] = lam[m] * (aj[3 * i] * dd[3 * m] + aj[3 * i + 1] * dd[3 * m + 1] +
+                                 aj[3 * i + 2] * dd[3 * m + 2]);
+    const Real mom[3] = {ac[1] * phi[2] - ac[2] * phi[1] + (aq[5] - aq[7]) - (p[5] - p[7]),
+                         ac[2] * phi[0] - ac[0] * phi[2] + (aq[6] - aq[2]) - (p[6] - p[2]),
+                         ac[0] * phi[1] - ac[1] * phi[0] + (aq[1] - aq[3]) - (p[1] - p[3])};
+    const Real t2[3] = {n[1] * t1[2] - n[2] * t1[1], n[2] * t1[0] - n[0] * t1[2],
+                        n[0] * t1[1] - n[1] * t1[0]};
+    Real f[3], ma[3];
+    for (int i = 0; i < 3; ++i) {
+      f[i] = phi[0] * n[i] + phi[1] * t1[i] + phi[2] * t2[i];
+      ma[i] = mom[0] * n[i] + mom[1] * t1[i] + mom[2] * t2[i];
+    }
+    const Real dxf[3] = {dx[1] * f[2] - dx[2] * f[1], dx[2] * f[0] - dx[0] * f[2],
+                         dx[0] * f[1] - dx[1] * f[0]};
+    for (int i = 0; i < 3; ++i) {
+      out.force[i][l] = f[i];
+      out.torque_b[i][l] = ma[i] - dxf[i];
+      out.torque_a[i][l] = -ma[i];
+      out.n[i][l] = n[i];
+      out.t1[i][l] = t1[i];
+    }
+    if constexpr (kEnergy) out.energy[l] = energy_from_change(hl, kn, al, jm, du, dd);
+  }
 }
 
-// J = sum kn rho rho^T, row-major.
-void j_matrix(const CondensedSums& sums, std::size_t i, Real* jm) {
-  const Real j[9] = {sums.j[0][i], sums.j[3][i], sums.j[4][i], sums.j[3][i], sums.j[1][i],
-                     sums.j[5][i], sums.j[4][i], sums.j[5][i], sums.j[2][i]};
-  std::copy(j, j + 9, jm);
+void held_block_baseline(const HeldInputs& in, const Index* list, Index count, bool energy,
+                         HeldLanes* lanes, HeldOutputs& out) {
+  if (energy) return held_block_lanes<true>(in, list, count, *lanes, out);
+  held_block_lanes<false>(in, list, count, *lanes, out);
 }
-
-Real energy_from_change(const CondensedSums& sums, std::size_t i, const HeldSums& h,
-                        const Change& ch) {
-  const Real l[3] = {1.0, sums.alpha[i], sums.alpha[i]};
-  Real jm[9];
-  j_matrix(sums, i, jm);
-  Real work = 0.0, quad = 0.0;
-  for (int k = 0; k < 3; ++k) {
-    work += h.phi0[k] * ch.du[k];
-    quad += sums.k_n[i] * l[k] * ch.du[k] * ch.du[k];
-    Real djd = 0.0;  // (dD J dD^T)_kk
-    for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b) djd += ch.dd[3 * k + a] * jm[3 * a + b] * ch.dd[3 * k + b];
-    quad += l[k] * djd;
-    for (int m = 0; m < 3; ++m) work += ch.dd[3 * k + m] * h.q[3 * m + k];  // dD_km Q_mk
-  }
-  return h.energy0 - work + 0.5 * quad;
+#if RCDEM_SIMD_MULTIVERSION
+RCDEM_SIMD_TARGET_AVX2 void held_block_avx2(const HeldInputs& in, const Index* list, Index count,
+                                            bool energy, HeldLanes* lanes, HeldOutputs& out) {
+  if (energy) return held_block_lanes<true>(in, list, count, *lanes, out);
+  held_block_lanes<false>(in, list, count, *lanes, out);
 }
+RCDEM_SIMD_TARGET_AVX512 void held_block_avx512(const HeldInputs& in, const Index* list,
+                                                Index count, bool energy, HeldLanes* lanes,
+                                                HeldOutputs& out) {
+  if (energy) return held_block_lanes<true>(in, list, count, *lanes, out);
+  held_block_lanes<false>(in, list, count, *lanes, out);
+}
+#endif
 
 }  // namespace
 
-bool hold_contact(const CondensedSums& sums, Index c, const ContactFrame& f,
-                  const LocalPointRecord* points, Index begin, Index end, HeldSums& h) {
+bool hold_contact(const CondensedSums& sums, Index c, const ContactFrame& f, const Real* pose,
+                  Index a, Index b, const LocalPointRecord* points, Index begin, Index end,
+                  HeldSums& h) {
+  // The rooms first: most contacts that fail do so at one point (a broken or capped one), and
+  // every visited damaged contact is tried every step.
+  Real room_n = std::numeric_limits<Real>::infinity(), room_s = room_n;
+  for (Index m = begin; m < end; ++m) {
+    Real rn, rs;
+    point_rooms(points[m], rn, rs);
+    // NaN rooms (a zero strength) fail here too.
+    if (!(rn > 0 && rs > 0)) return false;
+    room_n = std::min(room_n, rn);
+    room_s = std::min(room_s, rs);
+  }
   const auto i = static_cast<std::size_t>(c);
   const Real rc[3] = {sums.centroid[0][i], sums.centroid[1][i], sums.centroid[2][i]};
-  Real room_n = std::numeric_limits<Real>::infinity(), room_s = room_n;
   HeldSums s{};
   for (Index m = begin; m < end; ++m) {
     const LocalPointRecord& p = points[m];
-    Real rn, rs;
-    point_rooms(p, rn, rs);
-    room_n = std::min(room_n, rn);
-    room_s = std::min(room_s, rs);
     const PlanePointState& st = p.history;
     const Real phi[3] = {-st.fn, st.fs.x, st.fs.y};
     const Real rho[3] = {p.x0 - f.xa0.x() - rc[0], p.y0 - f.xa0.y() - rc[1],
                          p.z0 - f.xa0.z() - rc[2]};
     for (int k = 0; k < 3; ++k) {
       s.phi0[k] += phi[k];
-      for (int a = 0; a < 3; ++a) s.q[3 * k + a] += rho[k] * phi[a];
+      for (int j = 0; j < 3; ++j) s.q[3 * k + j] += rho[k] * phi[j];
     }
     s.energy0 += 0.5 * st.fn * st.fn / p.constants.kn + 0.5 * st.fs.squaredNorm() / p.constants.ks;
   }
-  // NaN rooms (a zero strength) fail here too.
-  if (!(room_n > 0 && room_s > 0)) return false;
   s.room_n = room_n;
   s.room_s = room_s;
-  for (int r = 0; r < 3; ++r) {
-    s.disp0[r] = f.disp0[r];
-    for (int k = 0; k < 3; ++k) s.disp[3 * r + k] = f.disp(r, k);
-  }
+  // The entry's kinematics with the kernel's arithmetic (not f's), so that the change is exactly
+  // zero at the entry's poses.
+  const Index ia = BodyPoses::kStride * a, ib = BodyPoses::kStride * b;
+  Real dx[3], ra[9], rb[9], arm[9];
+  for (int k = 0; k < 3; ++k) dx[k] = pose[ib + k] - pose[ia + k];
+  rotation_from_quaternion(pose[ia + 3], pose[ia + 4], pose[ia + 5], pose[ia + 6], ra);
+  rotation_from_quaternion(pose[ib + 3], pose[ib + 4], pose[ib + 5], pose[ib + 6], rb);
+  const Real nn[3] = {f.n.x(), f.n.y(), f.n.z()}, tt[3] = {f.t1.x(), f.t1.y(), f.t1.z()};
+  const Real r0[3] = {sums.offset0[0][i], sums.offset0[1][i], sums.offset0[2][i]};
+  held_kinematics(nn, tt, ra, rb, dx, r0, s.disp0, s.disp, arm);
   h = s;
   return true;
 }
 
-bool evaluate_held(const CondensedSums& sums, Index c, const HeldSums& h, const ContactFrame& f,
-                   ContactState& cs, Real* energy) {
-  const auto i = static_cast<std::size_t>(c);
-  const Change ch = change_since_entry(sums, i, h, f);
-  Real dd_sq = 0.0;
-  for (const Real v : ch.dd) dd_sq += v * v;
-  const Real spread = std::sqrt(dd_sq) * sums.radius[i];
-  if (!(ch.du[0] + spread < h.room_n)) return false;
-  if (!(std::sqrt(ch.du[1] * ch.du[1] + ch.du[2] * ch.du[2]) + spread < h.room_s)) return false;
-
-  const Real k = sums.k_n[i];
-  const Real l[3] = {1.0, sums.alpha[i], sums.alpha[i]};
-  const Real rc[3] = {sums.centroid[0][i], sums.centroid[1][i], sums.centroid[2][i]};
-  Real jm[9];
-  j_matrix(sums, i, jm);
-  Real phi[3], ac[3];
-  for (int r = 0; r < 3; ++r) {
-    phi[r] = h.phi0[r] - k * l[r] * ch.du[r];
-    ac[r] = 0.5 * f.disp0[r] + f.arm(r, 0) * rc[0] + f.arm(r, 1) * rc[1] + f.arm(r, 2) * rc[2];
+void evaluate_held_block(const HeldInputs& in, const Index* list, Index count, bool energy,
+                         HeldOutputs& out) {
+  HeldLanes lanes;
+#if RCDEM_SIMD_MULTIVERSION
+  switch (simd_level()) {
+    case SimdLevel::Avx512:
+      return held_block_avx512(in, list, count, energy, &lanes, out);
+    case SimdLevel::Avx2:
+      return held_block_avx2(in, list, count, energy, &lanes, out);
+    case SimdLevel::Baseline:
+      break;
   }
-  // aq = arm Q, p = arm J dD^T L (row-major).
-  Real aj[9], aq[9], p[9];
-  for (int r = 0; r < 3; ++r)
-    for (int m = 0; m < 3; ++m) {
-      aj[3 * r + m] = f.arm(r, 0) * jm[m] + f.arm(r, 1) * jm[3 + m] + f.arm(r, 2) * jm[6 + m];
-      aq[3 * r + m] = f.arm(r, 0) * h.q[m] + f.arm(r, 1) * h.q[3 + m] + f.arm(r, 2) * h.q[6 + m];
-    }
-  for (int r = 0; r < 3; ++r)
-    for (int m = 0; m < 3; ++m)
-      p[3 * r + m] = l[m] * (aj[3 * r] * ch.dd[3 * m] + aj[3 * r + 1] * ch.dd[3 * m + 1] +
-                             aj[3 * r + 2] * ch.dd[3 * m + 2]);
-  const Real mom[3] = {
-      ac[1] * phi[2] - ac[2] * phi[1] + (aq[5] - aq[7]) - (p[5] - p[7]),
-      ac[2] * phi[0] - ac[0] * phi[2] + (aq[6] - aq[2]) - (p[6] - p[2]),
-      ac[0] * phi[1] - ac[1] * phi[0] + (aq[1] - aq[3]) - (p[1] - p[3])};
-  const Vec3 force = phi[0] * f.n + phi[1] * f.t1 + phi[2] * f.t2;
-  const Vec3 moment_a = mom[0] * f.n + mom[1] * f.t1 + mom[2] * f.t2;
-  cs.force_b[c] = force;
-  cs.torque_b[c] = moment_a - f.dx.cross(force);
-  cs.torque_a[c] = -moment_a;
-  cs.dissipated_damage[c] = 0.0;
-  cs.dissipated_friction[c] = 0.0;
-  if (energy) *energy = energy_from_change(sums, i, h, ch);
-  return true;
+#endif
+  held_block_baseline(in, list, count, energy, &lanes, out);
 }
 
-Real held_strain_energy(const CondensedSums& sums, Index c, const HeldSums& h,
-                        const ContactFrame& f) {
+Real held_strain_energy(const CondensedSums& s, Index c, const HeldSums& h, const Vec3& n,
+                        const Vec3& t1, const Real* pose, Index a, Index b) {
+  // The kernel's arithmetic (held_block_lanes), on the stored frame: the same bits.
   const auto i = static_cast<std::size_t>(c);
-  return energy_from_change(sums, i, h, change_since_entry(sums, i, h, f));
+  const Index ia = BodyPoses::kStride * a, ib = BodyPoses::kStride * b;
+  Real dx[3], ra[9], rb[9], disp0[3], disp[9], arm[9];
+  for (int k = 0; k < 3; ++k) dx[k] = pose[ib + k] - pose[ia + k];
+  rotation_from_quaternion(pose[ia + 3], pose[ia + 4], pose[ia + 5], pose[ia + 6], ra);
+  rotation_from_quaternion(pose[ib + 3], pose[ib + 4], pose[ib + 5], pose[ib + 6], rb);
+  const Real nn[3] = {n.x(), n.y(), n.z()}, tt[3] = {t1.x(), t1.y(), t1.z()};
+  const Real r0[3] = {s.offset0[0][i], s.offset0[1][i], s.offset0[2][i]};
+  held_kinematics(nn, tt, ra, rb, dx, r0, disp0, disp, arm);
+  const Real rc[3] = {s.centroid[0][i], s.centroid[1][i], s.centroid[2][i]};
+  const Real* hd = reinterpret_cast<const Real*>(&h);
+  Real du[3], dd[9];
+  change_since_entry(hd, rc, disp0, disp, du, dd);
+  const Real jm[9] = {s.j[0][i], s.j[3][i], s.j[4][i], s.j[3][i], s.j[1][i],
+                      s.j[5][i], s.j[4][i], s.j[5][i], s.j[2][i]};
+  return energy_from_change(hd, s.k_n[i], s.alpha[i], jm, du, dd);
 }
 
 }  // namespace rcdem

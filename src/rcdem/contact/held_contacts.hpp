@@ -75,19 +75,47 @@ struct HeldContacts {
   void clear();  // nothing held (the sums stay allocated)
 };
 
-// Whether contact c, just evaluated through its points in the frame `f`, is held from the next
-// step: every point of it inside its room; if so, h receives its sums.
-bool hold_contact(const CondensedSums& sums, Index c, const ContactFrame& f,
-                  const LocalPointRecord* points, Index begin, Index end, HeldSums& h);
+// Whether contact c, just evaluated through its points in the frame `f` at the poses `pose` (A = a,
+// B = b), is held from the next step: every point of it inside its room; if so, h receives its
+// sums.
+bool hold_contact(const CondensedSums& sums, Index c, const ContactFrame& f, const Real* pose,
+                  Index a, Index b, const LocalPointRecord* points, Index begin, Index end,
+                  HeldSums& h);
 
-// Held contact c in this evaluation's frame `f` (turned, not stored): if every point stays inside
-// its room, stores its force and torques in cs (and its energy in *energy, if given) and returns
-// true; otherwise returns false and stores nothing.
-bool evaluate_held(const CondensedSums& sums, Index c, const HeldSums& h, const ContactFrame& f,
-                   ContactState& cs, Real* energy);
+// What the held contacts' kernel reads: the block's contacts from `begin`, their sums.
+struct HeldInputs {
+  const CondensedSums& sums;
+  const Index* particle_a;
+  const Index* particle_b;
+  const Real* pose;     // the bodies' centres and orientations at the evaluation (BodyPoses)
+  const Real* w;        // the bodies' angular velocities, 3 per body
+  const Real* normal;   // the stored frames' axes, 3 per contact (ContactState)
+  const Real* tangent;
+  Real dt;
+  const Real* held_sums;  // the block's HeldSums, HeldContacts::kBlock of them, as doubles
+  Index begin;            // the block's first contact
+};
 
-// The elastic energy of held contact c in the frame and kinematics `f`, from its sums.
-Real held_strain_energy(const CondensedSums& sums, Index c, const HeldSums& h,
-                        const ContactFrame& f);
+// Per entry of the list: force on B, torques, the turned frame's axes, the energy (if asked) and
+// whether the contact stays held (1) or must go through its points (0: nothing here is used).
+struct HeldOutputs {
+  Real force[3][HeldContacts::kBlock], torque_b[3][HeldContacts::kBlock],
+      torque_a[3][HeldContacts::kBlock];
+  Real n[3][HeldContacts::kBlock], t1[3][HeldContacts::kBlock];
+  Real energy[HeldContacts::kBlock];
+  std::int64_t kept[HeldContacts::kBlock];
+};
+
+// The held contacts `list[0, count)` of a block (formulas above) in SIMD lanes, 8 at a time with
+// AVX-512: the frame turned from the stored one, the kinematics from the poses, the bound, the
+// force and moment from the sums (and each one's energy with `energy`). The same instructions for
+// a contact whatever its place in the list, so the bits do not depend on the thread count.
+void evaluate_held_block(const HeldInputs& in, const Index* list, Index count, bool energy,
+                         HeldOutputs& out);
+
+// The elastic energy of held contact c in its stored frame (n, t1) at the poses of the evaluation
+// that stored it (A = a, B = b), from its sums: the kernel's bits.
+Real held_strain_energy(const CondensedSums& sums, Index c, const HeldSums& h, const Vec3& n,
+                        const Vec3& t1, const Real* pose, Index a, Index b);
 
 }  // namespace rcdem

@@ -140,14 +140,10 @@ void ConcreteContacts::add_strain_energy(Real& sum) const {
 }
 
 Real ConcreteContacts::held_energy(Index c) const {
-  // In the frame the last evaluation stored and its kinematics (dt is not read).
-  const ContactInputs last = inputs(kinematics_->position, kinematics_->rotation, 0.0);
-  ContactFrame f;
-  f.n = contacts_.normal[c];
-  f.t1 = contacts_.tangent[c];
-  f.intact = false;
-  frame_kinematics(last, &condensation_, c, f);
-  return held_strain_energy(condensation_.sums, c, condensation_.held.sums(c), f);
+  // In the frame the last evaluation stored, at its poses.
+  return held_strain_energy(condensation_.sums, c, condensation_.held.sums(c),
+                            contacts_.normal[c], contacts_.tangent[c], kinematics_->pose.ptr(),
+                            net_->particle_a[c], net_->particle_b[c]);
 }
 
 void ConcreteContacts::visit_springs(SpringVisitor& v, const Bodies& bodies) const {
