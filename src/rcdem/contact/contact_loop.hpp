@@ -439,6 +439,12 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
       if (was_condensed) evaluate_contact<Law, true>(law, *previous, cs, cond, c);
       if (kHoldableLaw<Law> && cond->held.held[c]) {  // its frame comes with its sums
         prefetch_held(cond->held, c);
+        // What the kernel gathers that the condensed kernel has not brought in: B's spin above
+        // all (a line of its own, anywhere in the bodies), and the stored frame.
+        __builtin_prefetch(in.w + in.net.particle_b[c]);
+        __builtin_prefetch(in.w + in.net.particle_a[c]);
+        __builtin_prefetch(cs.normal.data() + c);
+        __builtin_prefetch(cs.tangent.data() + c);
         held[helds++] = c;
         continue;
       }

@@ -128,7 +128,9 @@ template <typename H>
 // moment. A lane whose turn leaves the common case (normal turned past 120 degrees, spin of
 // 0.1 rad or more, degenerate axis) is not kept: the caller releases it to the point loop, whose
 // scalar frame handles those.
-constexpr Index kLanes = HeldContacts::kBlock;
+// Each array a little longer than a block: at 1 KB apart, every fourth array of a lane's column
+// shares its address modulo 4 KB, and the stores that fill a column stalled on it (4K aliasing).
+constexpr Index kLanes = HeldContacts::kBlock + 9;
 struct HeldLanes {
   Real no[3][kLanes], to[3][kLanes], wsum[3][kLanes], r0[3][kLanes], rc[3][kLanes], j[6][kLanes];
   Real h[kHeldSize][kLanes];
