@@ -4,6 +4,7 @@
 // equals their points' once caught up; the energy kept by the step equals the one summed after it
 // to the bit; and the held run is the same bits at 1 and 2 threads and after a restart.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -11,8 +12,6 @@
 #include <filesystem>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
 
 #if defined(_OPENMP)
 #include <omp.h>
@@ -46,14 +45,16 @@ seed = 2
 relaxation_iterations = 100
 [solver]
 preset = "basic"
-hold_unloading_contacts = )" + std::string(hold ? "true" : "false") + R"(
+hold_unloading_contacts = )" +
+                            std::string(hold ? "true" : "false") + R"(
 [plates.bottom]
 face = "z-"
 glued = true
 [plates.top]
 face = "z+"
 glued = true
-velocity = )" + fmt_real(velocity) + R"(
+velocity = )" + fmt_real(velocity) +
+                            R"(
 ramp_time = 2.0e-5
 [loading]
 control_plate = "top"
@@ -123,10 +124,11 @@ TEST(HeldContacts, SameResultsAsVisitingThePointsToRounding) {
   EXPECT_LT(worst(held.load, visited.load), 2 * spread_load + 1e-9 * peak);
   EXPECT_LT(worst(held.energy, visited.energy), 2 * spread_energy + 1e-9 * visited.energy.back());
   EXPECT_LE(std::abs(held.damage - visited.damage), 2 * spread_damage + 1e-9 * visited.damage);
-  std::printf("peak %.6g N; worst load difference held/visited %.3g N, nudged %.3g N; damage "
-              "energy held %.8g / visited %.8g J (nudged: within %.3g J); most held %lld\n",
-              peak, worst(held.load, visited.load), spread_load, held.damage, visited.damage,
-              spread_damage, static_cast<long long>(held.most_held));
+  std::printf(
+      "peak %.6g N; worst load difference held/visited %.3g N, nudged %.3g N; damage "
+      "energy held %.8g / visited %.8g J (nudged: within %.3g J); most held %lld\n",
+      peak, worst(held.load, visited.load), spread_load, held.damage, visited.damage, spread_damage,
+      static_cast<long long>(held.most_held));
 }
 
 // The held contacts' strain energy from their sums (Simulation::strain_energy without a catch-up)
@@ -183,9 +185,8 @@ TEST(HeldContacts, SameBitsForAnyThreadCountAndAfterARestart) {
   Simulation writer(sc, build_specimen(sc)), restored(sc, build_specimen(sc));
   for (int k = 0; k < kSteps / 2; ++k) writer.step();
   ASSERT_GT(writer.held_contacts(), 0);
-  const fs::path file = io::write_checkpoint(dir, io::CheckpointParts{&writer, nullptr, nullptr,
-                                                                      nullptr},
-                                             0);
+  const fs::path file =
+      io::write_checkpoint(dir, io::CheckpointParts{&writer, nullptr, nullptr, nullptr}, 0);
   io::restore_checkpoint(file, io::CheckpointParts{&restored, nullptr, nullptr, nullptr}, 0);
   for (int k = 0; k < kSteps / 2; ++k) {
     writer.step();

@@ -93,9 +93,9 @@ struct ContactInputs {
 };
 
 // Body i's centre and orientation at the evaluation: from its pose when the inputs have them (one
-// cache line per body, which the condensed kernel has just read for the block: B's centre, three
-// lines and its matrix two more, were the frames' largest cost), else from the arrays. The same
-// bits either way (rotation_from_quaternion is toRotationMatrix's arithmetic).
+// cache line per body, which the condensed kernel has just read for the block, where the centre
+// and the matrix are three lines elsewhere), else from the arrays. The same bits either way
+// (rotation_from_quaternion is toRotationMatrix's arithmetic; the golden cases are unchanged).
 [[gnu::always_inline]] inline Vec3 body_centre(const ContactInputs& in, Index i) {
   if (!in.pose) return in.x[i];
   const Real* p = in.pose + BodyPoses::kStride * i;
@@ -165,9 +165,9 @@ struct ContactInputs {
   f.dx = body_centre(in, b) - body_centre(in, a);
   // x_B0 - x_A0: from the condensation's sums when there are some (the same bits, and in cache,
   // where B's centre at t = 0 is a line of its own).
-  const Vec3 r0 = cond ? Vec3(cond->sums.offset0[0][c], cond->sums.offset0[1][c],
-                              cond->sums.offset0[2][c])
-                       : Vec3(in.x0[b] - in.x0[a]);
+  const Vec3 r0 =
+      cond ? Vec3(cond->sums.offset0[0][c], cond->sums.offset0[1][c], cond->sums.offset0[2][c])
+           : Vec3(in.x0[b] - in.x0[a]);
   Vec3 u0;
   for (int i = 0; i < 3; ++i)
     u0[i] = offset_displacement(f.dx[i], rb(i, 0), rb(i, 1), rb(i, 2), r0.x(), r0.y(), r0.z());
@@ -263,11 +263,8 @@ template <typename Law, bool kPointsOnly = false>
 // every point of the contact is intact: their forces are then independent of the frame
 // (kn u_n, -ks u_s), so it is any axis across n, as ElasticCondensation's catch-up draws it.
 template <typename Law, bool kPointsOnly = false>
-[[gnu::always_inline]] inline PointTransitions evaluate_contact(const Law& law,
-                                                                const ContactInputs& in,
-                                                                ContactState& cs,
-                                                                ElasticCondensation* cond,
-                                                                Index c) {
+[[gnu::always_inline]] inline PointTransitions evaluate_contact(
+    const Law& law, const ContactInputs& in, ContactState& cs, ElasticCondensation* cond, Index c) {
   ContactFrame f;
   contact_frame(in, cs, cond, c, f);
   return contact_points<Law, kPointsOnly>(law, in, cs, cond, c, f);
@@ -292,8 +289,8 @@ void catch_up_held(const Law& law, const ContactInputs& in, ContactState& cs,
 // GCC to inline the point loop's Eigen operations (regression.hot_loop_inlined; CMakeLists.txt).
 template <typename Law>
 [[gnu::noinline]] void keep_point_energies(const Law& law, const ContactNetwork& net,
-                                           const ContactState& cs, const Index* visit,
-                                           Index count, Real* energy) {
+                                           const ContactState& cs, const Index* visit, Index count,
+                                           Real* energy) {
   for (Index k = 0; k < count; ++k) energy[visit[k]] = cs.strain_energy(law, net, visit[k]);
 }
 
@@ -363,8 +360,7 @@ template <typename Law>
 // The visited contacts `visit[0, count)` of the block from `begin`, just evaluated in their frames
 // `frames[c - begin]`, that are damaged and have every point inside its room are held from the
 // next step.
-[[gnu::noinline]] inline void hold_visited_contacts(const ContactInputs& in,
-                                                    const ContactState& cs,
+[[gnu::noinline]] inline void hold_visited_contacts(const ContactInputs& in, const ContactState& cs,
                                                     ElasticCondensation& cond, const Index* visit,
                                                     Index count, const ContactFrame* frames,
                                                     Index begin) {
@@ -373,9 +369,8 @@ template <typename Law>
     const Index c = visit[k];
     if (cond.intact[c] || !cond.eligible[c]) continue;
     HeldSums h;
-    if (hold_contact(cond.sums, c, frames[c - begin], in.pose, net.particle_a[c],
-                     net.particle_b[c], cs.point.data(), net.point_begin[c],
-                     net.point_begin[c + 1], h)) {
+    if (hold_contact(cond.sums, c, frames[c - begin], in.pose, net.particle_a[c], net.particle_b[c],
+                     cs.point.data(), net.point_begin[c], net.point_begin[c + 1], h)) {
       cond.held.sums(c) = h;
       cond.held.held[c] = 1;
     }
@@ -400,8 +395,8 @@ template <typename Law>
 // energy after the step, as a pass over the contacts).
 template <typename Law>
 void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs,
-                       ElasticCondensation* cond = nullptr,
-                       const ContactInputs* previous = nullptr, Real* energy = nullptr) {
+                       ElasticCondensation* cond = nullptr, const ContactInputs* previous = nullptr,
+                       Real* energy = nullptr) {
   constexpr Index kBlock = CondensedBlock::kSize;
   cs.size_blocks(in.net.contact_count(), kBlock);
   if (!cond) {
@@ -416,8 +411,8 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
   }
   assert(in.pose && "the condensed kernel reads the bodies' poses");
   cond->any_condensed = true;  // cleared by the catch-up; harmless if none was
-  const CondensedInputs ci{cond->sums, in.net.particle_a.data(), in.net.particle_b.data(), in.pose,
-                           in.net.contact_count(), energy};
+  const CondensedInputs ci{cond->sums, in.net.particle_a.data(), in.net.particle_b.data(),
+                           in.pose,    in.net.contact_count(),   energy};
   const Index blocks = (in.net.contact_count() + kBlock - 1) / kBlock;
   if (static_cast<Index>(cs.block_damage.size()) != blocks) {  // the first step only
     cs.block_damage.assign(static_cast<std::size_t>(blocks), 0.0);
@@ -426,8 +421,9 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
   parallel_for_blocks(in.net.contact_count(), kBlock, [&](Index begin, Index end) {
     CondensedBlock block;
     evaluate_condensed_block(ci, begin, end - begin, cs, block);
-    // The contacts that go through their points or are held: every frame first (by c - begin),
-    // then the held ones from their sums, then every visited contact's points.
+    // The contacts that go through their points form their frames first (by c - begin); the
+    // held ones are listed, then evaluated together in SIMD lanes (those that leave their room
+    // join the visited ones); then every visited contact's points.
     Index visit[CondensedBlock::kSize], held[CondensedBlock::kSize];
     ContactFrame frames[CondensedBlock::kSize];
     Index visits = 0, helds = 0;
@@ -462,8 +458,7 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
                        contact_points(law, in, cs, cond, visit[k], frames[visit[k] - begin]),
                        changed);
     if constexpr (kHoldableLaw<Law>)
-      if (cond->held.enabled)
-        hold_visited_contacts(in, cs, *cond, visit, visits, frames, begin);
+      if (cond->held.enabled) hold_visited_contacts(in, cs, *cond, visit, visits, frames, begin);
     if (energy) keep_point_energies(law, in.net, cs, visit, visits, energy);
     cs.block_transitions[static_cast<std::size_t>(begin / kBlock)] = changed;
     // Contacts evaluated from their sums dissipate exactly zero, so the kernel does not store it

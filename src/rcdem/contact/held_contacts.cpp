@@ -12,13 +12,12 @@
 
 namespace rcdem {
 
-static_assert(HeldContacts::kBlock == CondensedBlock::kSize, "held sums are kept per block of the loop");
+static_assert(HeldContacts::kBlock == CondensedBlock::kSize,
+              "held sums are kept per block of the loop");
 
 void HeldContacts::resize(Index contacts) {
   held.assign(static_cast<std::size_t>(contacts), 0);
-  block.assign(static_cast<std::size_t>((contacts + kBlock - 1) /
-                                        kBlock),
-               {});
+  block.assign(static_cast<std::size_t>((contacts + kBlock - 1) / kBlock), {});
 }
 
 HeldSums& HeldContacts::sums(Index c) {
@@ -28,8 +27,7 @@ HeldSums& HeldContacts::sums(Index c) {
 }
 
 const HeldSums& HeldContacts::sums(Index c) const {
-  return block[static_cast<std::size_t>(c / kBlock)]
-              [static_cast<std::size_t>(c % kBlock)];
+  return block[static_cast<std::size_t>(c / kBlock)][static_cast<std::size_t>(c % kBlock)];
 }
 
 Index HeldContacts::count() const {
@@ -70,8 +68,15 @@ void point_rooms(const LocalPointRecord& p, Real& room_n, Real& room_s) {
                                                    Real (&disp0)[3], Real (&disp)[9],
                                                    Real (&arm)[9]) {
   // E^T, row-major: rows n, t1, t2 = n x t1.
-  const Real e[9] = {n[0],  n[1],  n[2],  t1[0], t1[1], t1[2], n[1] * t1[2] - n[2] * t1[1],
-                     n[2] * t1[0] - n[0] * t1[2], n[0] * t1[1] - n[1] * t1[0]};
+  const Real e[9] = {n[0],
+                     n[1],
+                     n[2],
+                     t1[0],
+                     t1[1],
+                     t1[2],
+                     n[1] * t1[2] - n[2] * t1[1],
+                     n[2] * t1[0] - n[0] * t1[2],
+                     n[0] * t1[1] - n[1] * t1[0]};
   Real u0[3];
   for (int i = 0; i < 3; ++i)
     u0[i] = offset_displacement(dx[i], rb[i], rb[i + 3], rb[i + 6], r0[0], r0[1], r0[2]);
@@ -95,12 +100,12 @@ static_assert(sizeof(HeldSums) == kHeldSize * sizeof(Real), "HeldSums is 27 doub
 // du_c = d0 + dD r_c and dD (row-major) since the entry, from the sums `h` (HeldSums order).
 template <typename H>
 [[gnu::always_inline]] inline void change_since_entry(const H& h, const Real (&rc)[3],
-                                                      const Real (&disp0)[3],
-                                                      const Real (&disp)[9], Real (&du)[3],
-                                                      Real (&dd)[9]) {
+                                                      const Real (&disp0)[3], const Real (&disp)[9],
+                                                      Real (&du)[3], Real (&dd)[9]) {
   for (int r = 0; r < 3; ++r) {
     for (int k = 0; k < 3; ++k) dd[3 * r + k] = disp[3 * r + k] - h[18 + 3 * r + k];
-    du[r] = (disp0[r] - h[15 + r]) + (dd[3 * r] * rc[0] + dd[3 * r + 1] * rc[1] + dd[3 * r + 2] * rc[2]);
+    du[r] = (disp0[r] - h[15 + r]) +
+            (dd[3 * r] * rc[0] + dd[3 * r + 1] * rc[1] + dd[3 * r + 2] * rc[2]);
   }
 }
 
@@ -229,14 +234,16 @@ template <bool kEnergy>
     Real phi[3], ac[3];
     for (int i = 0; i < 3; ++i) {
       phi[i] = hl[i] - kn * lam[i] * du[i];
-      ac[i] = 0.5 * disp0[i] + (arm[3 * i] * rc[0] + arm[3 * i + 1] * rc[1] + arm[3 * i + 2] * rc[2]);
+      ac[i] =
+          0.5 * disp0[i] + (arm[3 * i] * rc[0] + arm[3 * i + 1] * rc[1] + arm[3 * i + 2] * rc[2]);
     }
     Real aj[9], aq[9], p[9];  // arm J, arm Q, arm J dD^T L (row-major)
     for (int i = 0; i < 3; ++i)
       for (int m = 0; m < 3; ++m) {
-        aj[3 * i + m] = arm[3 * i] * jm[m] + arm[3 * i + 1] * jm[3 + m] + arm[3 * i + 2] * jm[6 + m];
-        aq[3 * i + m] = arm[3 * i] * hl[3 + m] + arm[3 * i + 1] * hl[6 + m] +
-                        arm[3 * i + 2] * hl[9 + m];
+        aj[3 * i + m] =
+            arm[3 * i] * jm[m] + arm[3 * i + 1] * jm[3 + m] + arm[3 * i + 2] * jm[6 + m];
+        aq[3 * i + m] =
+            arm[3 * i] * hl[3 + m] + arm[3 * i + 1] * hl[6 + m] + arm[3 * i + 2] * hl[9 + m];
       }
     for (int i = 0; i < 3; ++i)
       for (int m = 0; m < 3; ++m)

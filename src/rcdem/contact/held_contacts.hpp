@@ -18,8 +18,9 @@
 //              (eps : P)_i = P_jk - P_kj for (i, j, k) cyclic,
 //   energy     sum E_J = E0 - (Phi0 . du_c + sum_ik dD_ik Q_ki)
 //                          + (K du_c^T L du_c + sum_k L_k (dD J dD^T)_kk) / 2,
-// E_J = phi_J^T L^-1 phi_J / (2 kn_J), the spring energy (SPEC 11). Phi0, Q, E0 and the entry's
-// disp0, disp are 27 numbers per held contact, against 6 points' 768 bytes.
+// E_J = phi_J^T L^-1 phi_J / (2 kn_J), the spring energy (SPEC 11). Phi0, Q, E0, the entry's
+// disp0, disp and the two rooms below are 27 numbers per held contact, against 6 points' 768
+// bytes.
 //
 // Whether the points stay linear is decided by a bound, as for the intact ones: |du_J - du_c| <=
 // |dD|_F max|rho| = e, and the contact stays held while du_cn + e < room_n and |du_cs| + e <
@@ -36,8 +37,7 @@
 // Reading the points (snapshots, checkpoints: Simulation::contacts()) catches the held contacts
 // up and releases them, so a restart gives the bits of the run that wrote the checkpoint, but the
 // output schedule changes a run at the level of rounding: solver.hold_unloading_contacts is off by
-// default (docs/model.md). A held contact still costs its frame, turned every step as a visited
-// one's, which in a cracked cube is most of a visit's cost (bench/RESULTS.md).
+// default (docs/model.md).
 #include <cstdint>
 #include <vector>
 
@@ -51,17 +51,17 @@ struct CondensedSums;  // elastic_condensation.hpp
 
 // What a held contact keeps from its entry (formulas above), frame components.
 struct HeldSums {
-  Real phi0[3];        // sum phi_J(t0)
-  Real q[9];           // Q = sum rho_J phi_J(t0)^T, row-major: q[3 k + i] = sum rho_k phi_i
-  Real energy0;        // sum E_J(t0)
+  Real phi0[3];         // sum phi_J(t0)
+  Real q[9];            // Q = sum rho_J phi_J(t0)^T, row-major: q[3 k + i] = sum rho_k phi_i
+  Real energy0;         // sum E_J(t0)
   Real room_n, room_s;  // the bound's rooms
-  Real disp0[3];       // disp0(t0)
-  Real disp[9];        // disp(t0), row-major
+  Real disp0[3];        // disp0(t0)
+  Real disp[9];         // disp(t0), row-major
 };
 
 // The held contacts of a network: a flag per contact and, per block of kBlock contacts (the
-// contact loop's, CondensedBlock::kSize) that has held one, the block's sums (allocated by the thread that evaluates the block,
-// so only cracked regions take memory).
+// contact loop's, CondensedBlock::kSize) that has held one, the block's sums (allocated by the
+// thread that evaluates the block, so only cracked regions take memory).
 struct HeldContacts {
   static constexpr Index kBlock = 128;
   bool enabled = false;                      // solver.hold_unloading_contacts
@@ -87,9 +87,9 @@ struct HeldInputs {
   const CondensedSums& sums;
   const Index* particle_a;
   const Index* particle_b;
-  const Real* pose;     // the bodies' centres and orientations at the evaluation (BodyPoses)
-  const Real* w;        // the bodies' angular velocities, 3 per body
-  const Real* normal;   // the stored frames' axes, 3 per contact (ContactState)
+  const Real* pose;    // the bodies' centres and orientations at the evaluation (BodyPoses)
+  const Real* w;       // the bodies' angular velocities, 3 per body
+  const Real* normal;  // the stored frames' axes, 3 per contact (ContactState)
   const Real* tangent;
   Real dt;
   const Real* held_sums;  // the block's HeldSums, HeldContacts::kBlock of them, as doubles
