@@ -21,6 +21,15 @@
 #        contact-steps/s to YADE's>, both at THREADS threads.
 #     Why rounds: this machine's speed and bandwidth drift by 2-3x over minutes (bench/RESULTS.md,
 #     session 11), so only figures taken seconds apart can be compared.
+#   bash bench/throughput.sh --cracked [STEPS=200] [BUILD_DIR=build]
+#     rcdem against YADE per particle-step, intact and cracked (issue 43): the 160 mm tension cube
+#     (examples/uniaxial/tension.toml) intact and from its checkpoint at step 12,000, past the
+#     peak (CHECKPOINT, made here with rcdem_step_bench --save-checkpoint if not given), against
+#     YADE's cube intact and pulled past its peak to 0.8 of it (bench/yade_cpm.py ... cracked);
+#     each state in one YADE process of ROUNDS rounds, every YADE timing followed by rcdem's
+#     (best of REPEATS) at THREADS threads. One ratio per round; the medians; last lines
+#     ratio_particle_steps_vs_yade_intact=<median> and ..._cracked=<median>. HOLD=1: rcdem's
+#     cracked cube with solver.hold_unloading_contacts = true.
 #   bash bench/throughput.sh --scaling [STEPS=200] [BUILD_DIR=build]
 #     rcdem_step_bench on cubes of SCALING_SIZES (default 0.07 0.11 0.16 m: about 0.9k, 3.4k and
 #     10.3k particles, 12x) at THREADS threads; one line per size with the time per step per
@@ -35,11 +44,15 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 SCALING=0
+CRACKED=0
 if [[ "${1:-}" == "--scaling" ]]; then
   SCALING=1
   shift
+elif [[ "${1:-}" == "--cracked" ]]; then
+  CRACKED=1
+  shift
 fi
-K=${1:-$([[ $SCALING == 1 ]] && echo 200 || echo 500)}
+K=${1:-$([[ $SCALING == 1 || $CRACKED == 1 ]] && echo 200 || echo 500)}
 BUILD=${2:-build}
 THREADS=${THREADS:-2}
 RCDEM_THREADS=${RCDEM_THREADS:-"1 2"}
@@ -90,6 +103,59 @@ fi
 
 # The median of numbers (one per argument).
 median() { printf '%s\n' "$@" | sort -g | awk '{ v[NR] = $1 } END { m = (NR % 2) ? v[(NR + 1) / 2] : 0.5 * (v[NR / 2] + v[NR / 2 + 1]); printf "%.4g", m }'; }
+
+if [[ $CRACKED == 1 ]]; then
+  cube=examples/uniaxial/tension.toml
+  ckpt=${CHECKPOINT:-}
+  if [[ -z "$ckpt" ]]; then
+    mkdir -p results/bench_ckpt_tension
+    ckpt=results/bench_ckpt_tension/checkpoint_000000012000.rcp
+    if [[ ! -f "$ckpt" ]]; then
+      echo "making the cracked cube's checkpoint (12,000 steps)..." >&2
+      OMP_NUM_THREADS=$THREADS "$STEP_BENCH" "$cube" 1 12000 1 \
+        --save-checkpoint results/bench_ckpt_tension > /dev/null
+    fi
+  fi
+  cracked_cube=$cube
+  if [[ "${HOLD:-0}" == 1 ]]; then
+    cracked_cube="$tmp/tension_hold.toml"
+    awk '{ print } /^\[solver\]/ { print "hold_unloading_contacts = true" }' "$cube" > "$cracked_cube"
+  fi
+  echo "cracked: rcdem $cube intact and from $ckpt (HOLD=${HOLD:-0}); YADE ${YADE_N:-10335} spheres; $THREADS thread(s), $ROUNDS rounds"
+  for state in intact cracked; do
+    if [[ $state == intact ]]; then
+      between="OMP_NUM_THREADS=$THREADS $STEP_BENCH $cube $K 50 $REPEATS | grep -v '^#'"
+    else
+      between="OMP_NUM_THREADS=$THREADS $STEP_BENCH $cracked_cube $K 20 $REPEATS --checkpoint $ckpt | grep -v '^#'"
+    fi
+    if ! YADE_BETWEEN="$between" "$YADE" -n -x -j "$THREADS" bench/yade_cpm.py "${YADE_N:-10335}" \
+        "$K" "$ROUNDS" "$state" > "$tmp/yade_$state.log" 2>&1; then
+      cat "$tmp/yade_$state.log" >&2
+      echo "yade failed ($state)" >&2
+      exit 1
+    fi
+    grep '^# yade_cpm' "$tmp/yade_$state.log" || true
+    spheres=$(kv yade_spheres "$(grep '^yade_threads=' "$tmp/yade_$state.log" | tail -n1)")
+    ratios=()
+    ysteps=""
+    while IFS= read -r l; do
+      case "$l" in
+        yade_round=*) ysteps=$(calc "$K / $(kv yade_seconds "$l")") ;;
+        scenario=*)
+          [[ -n "$ysteps" ]] || continue
+          rps=$(calc "$(kv steps_per_s "$l") * $(kv bodies "$l")")
+          yps=$(calc "$ysteps * $spheres")
+          ratios+=("$(calc "$rps / $yps")")
+          echo "$state round=${#ratios[@]} threads=$THREADS yade_steps_per_s=$ysteps yade_spheres=$spheres rcdem_steps_per_s=$(kv steps_per_s "$l") rcdem_bodies=$(kv bodies "$l") held_contacts=$(kv held_contacts "$l") ratio_particle_steps=${ratios[-1]}"
+          ysteps=""
+          ;;
+      esac
+    done < "$tmp/yade_$state.log"
+    [[ ${#ratios[@]} -gt 0 ]] || { cat "$tmp/yade_$state.log" >&2; echo "no paired rounds ($state)" >&2; exit 1; }
+    echo "ratio_particle_steps_vs_yade_$state=$(median "${ratios[@]}")"
+  done
+  exit 0
+fi
 
 # One line of the closing summary: the issue's target, the median measured, met or not.
 verdict() { awk -v what="$1" -v x="$2" -v goal="$3" 'BEGIN { printf "# target %s: median %s, %s\n", what, x, (x >= goal) ? "met" : "NOT met" }'; }

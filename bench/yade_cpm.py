@@ -2,7 +2,7 @@
 # the side-by-side line of bench/throughput.sh (issue: benchmarks, YADE side by side).
 #
 # Invocation (tested with Debian's yade 2023.02a, headless, no display needed):
-#   yade -n -x -j THREADS bench/yade_cpm.py N STEPS [REPEATS=1]
+#   yade -n -x -j THREADS bench/yade_cpm.py N STEPS [REPEATS=1] [intact|cracked]
 #     -n: no GUI (same as unsetting DISPLAY); -x: exit when the script ends; -j: OpenMP threads
 #     (same as OMP_NUM_THREADS). yade hands the arguments after the script name over as
 #     sys.argv = ['bench/yade_cpm.py', 'N', 'STEPS']. yade also prints a banner and opens a TCP
@@ -20,7 +20,11 @@
 # and the forces are not trivially zero. A random dense packing with the 1.5 factor gives about
 # 6 bonds per sphere, like the issue's reference run (7,568 spheres, 45,316 bonds).
 #
-# Timing: 1 step (bonds) + 20 warm-up steps, then O.run(STEPS, True) under time.time(), REPEATS
+# cracked (issue 43): the cube is pulled along z instead (strain rate +1.25 /s) until its mean
+# stress has passed its peak and fallen to CRACKED_FRACTION (0.8) of it, so that the timed steps
+# are those of a cracked cube, as rcdem's tension cube from its checkpoint past the peak.
+#
+# Timing: 1 step (bonds) + 20 warm-up steps (cracked: + the steps past the peak), then O.run(STEPS, True) under time.time(), REPEATS
 # times back to back; the fastest repetition is reported (as rcdem_step_bench does with its own
 # REPEATS: on a shared machine the slower ones carry the neighbours' load).
 # Paired rounds: with YADE_BETWEEN set (a shell command), each repetition is a round: YADE's timing
@@ -39,12 +43,14 @@ import time
 
 from yade import pack
 
-if len(sys.argv) < 3:
-    print("usage: yade -n -x -j THREADS bench/yade_cpm.py N STEPS [REPEATS=1]")
+if len(sys.argv) < 3 or (len(sys.argv) > 4 and sys.argv[4] not in ("intact", "cracked")):
+    print("usage: yade -n -x -j THREADS bench/yade_cpm.py N STEPS [REPEATS=1] [intact|cracked]")
     sys.exit(1)
 N = int(float(sys.argv[1]))
 STEPS = int(sys.argv[2])
 REPEATS = int(sys.argv[3]) if len(sys.argv) > 3 else 1
+CRACKED = len(sys.argv) > 4 and sys.argv[4] == "cracked"
+CRACKED_FRACTION = 0.8
 L = 0.160  # cube edge [m]
 
 # Sphere radius for about N spheres: start from a packing fraction and correct it by the count
@@ -83,7 +89,7 @@ O.engines = [
         [Law2_ScGeom_CpmPhys_Cpm()],
     ),
     NewtonIntegrator(damping=0.2),
-    UniaxialStrainer(strainRate=-1.25, axis=axis, asymmetry=0, posIds=posIds, negIds=negIds,
+    UniaxialStrainer(strainRate=1.25 if CRACKED else -1.25, axis=axis, asymmetry=0, posIds=posIds, negIds=negIds,
                      crossSectionArea=L * L, blockDisplacements=False, blockRotations=False,
                      setSpeeds=True, label='strainer'),
 ]
@@ -92,6 +98,18 @@ O.step()  # the bonds: every pair within 1.5 x the radii sum
 ig2ss.interactionDetectionFactor = 1.0
 bo1s.aabbEnlargeFactor = 1.0
 O.run(20, True)  # warm-up
+peak_stress = 0.0
+if CRACKED:
+    # Past the peak: the mean stress (tension positive) checked every 50 steps.
+    while True:
+        O.run(50, True)
+        stress = strainer.avgStress
+        peak_stress = max(peak_stress, stress)
+        if peak_stress > 0 and stress < CRACKED_FRACTION * peak_stress:
+            break
+        if O.iter > 200000:
+            print("yade_cpm: the cube did not soften within 200,000 steps")
+            sys.exit(1)
 
 
 def real_interactions():
@@ -123,7 +141,9 @@ for rep in range(REPEATS):
 rate, seconds, c0, c1 = best
 spheres = len(O.bodies)
 print("# yade_cpm: radius=%.4g m, packing %.1f s, bonds/sphere %.2f, contacts end %d, dt %.4g s, "
-      "strain %.3g" % (r, t_pack, c0 / float(spheres), c1, O.dt, strainer.strain))
+      "strain %.3g, %s (peak mean stress %.4g Pa, now %.4g Pa, step %d)"
+      % (r, t_pack, c0 / float(spheres), c1, O.dt, strainer.strain,
+         "cracked" if CRACKED else "intact", peak_stress, strainer.avgStress, O.iter))
 print("yade_threads=%d yade_spheres=%d yade_contacts=%d yade_steps=%d yade_seconds=%.4f "
       "yade_contact_steps_per_s=%.4g yade_repeat_seconds=%s"
       % (O.numThreads, spheres, c0, STEPS, seconds, rate,
