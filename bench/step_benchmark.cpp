@@ -17,7 +17,8 @@
 // Prints one line of key=value pairs (scenario, threads, bodies, contacts, local_points, steps,
 // seconds, steps_per_s, particle_steps_per_s, contact_steps_per_s, local_point_steps_per_s,
 // bytes_per_step, bytes_per_local_point, achieved_GBps, condensed_contacts: those evaluated from
-// their sums at the last step, contact/elastic_condensation.hpp; cpu_seconds: the process's CPU
+// their sums at the last step, contact/elastic_condensation.hpp; held_contacts: damaged ones held
+// to their sums, contact/held_contacts.hpp; cpu_seconds: the process's CPU
 // time over the timed steps, all threads, idle spinning included: on a shared machine the steadier
 // figure at 1 thread; both of the fastest repetition), repeat_seconds (every repetition's),
 // strain_energy_seconds (Simulation::strain_energy() once after the steps, as a run's history row
@@ -302,12 +303,11 @@ void time_and_report(rcdem::Simulation& sim, const BenchArgs& a, double setup_s)
       "seconds=%.4f steps_per_s=%.3f particle_steps_per_s=%.4g contact_steps_per_s=%.4g "
       "local_point_steps_per_s=%.4g bytes_per_step=%.0f bytes_per_local_point=%.1f "
       "achieved_GBps=%.3f setup_seconds=%.2f condensed_contacts=%.0f held_contacts=%ld "
-      "cpu_seconds=%.4f "
-      "repeat_seconds=%s strain_energy_seconds=%.5f end_strain_energy_J=%.17g\n",
+      "cpu_seconds=%.4f repeat_seconds=%s strain_energy_seconds=%.5f end_strain_energy_J=%.17g\n",
       a.path.c_str(), rcdem::io::thread_count(), bodies, contacts, points, a.steps, seconds, rate,
       rate * bodies, rate * contacts, rate * points, bytes, bytes / points, bytes * rate * 1e-9,
-      setup_s, bc.condensed_contacts, static_cast<long>(sim.held_contacts()), cpu_seconds, repeat_seconds.c_str(), strain_energy_s,
-      strain_energy);
+      setup_s, bc.condensed_contacts, static_cast<long>(sim.held_contacts()), cpu_seconds,
+      repeat_seconds.c_str(), strain_energy_s, strain_energy);
   std::printf(
       "# bytes: per_local_point=%.0f x %.0f visited = %.4g; per_contact=%.0f x %.0f + "
       "condensed %.0f x %.0f = %.4g; "

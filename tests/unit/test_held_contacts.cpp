@@ -21,45 +21,17 @@
 #include "rcdem/run/checkpoint.hpp"
 #include "rcdem/solver/simulation.hpp"
 #include "rcdem/specimens/specimen.hpp"
+#include "small_scenarios.hpp"
 
 using namespace rcdem;
 namespace fs = std::filesystem;
 
 namespace {
 
-std::string fmt_real(Real v) {
-  char text[40];
-  std::snprintf(text, sizeof text, "%.17g", v);
-  return text;
-}
-
-// A 40 mm box pulled apart between glued plates, slowly enough that most of its damaged contacts
-// unload elastically once the crack has formed.
+// The pulled box (small_scenarios.hpp) at the speed `velocity`: slow enough that most of its
+// damaged contacts unload elastically once the crack has formed.
 Scenario pulled_box(bool hold, Real velocity = 0.05) {
-  return parse_scenario(R"(
-[specimen]
-shape = "box"
-size = [0.04, 0.04, 0.04]
-[generation]
-seed = 2
-relaxation_iterations = 100
-[solver]
-preset = "basic"
-hold_unloading_contacts = )" +
-                            std::string(hold ? "true" : "false") + R"(
-[plates.bottom]
-face = "z-"
-glued = true
-[plates.top]
-face = "z+"
-glued = true
-velocity = )" + fmt_real(velocity) +
-                            R"(
-ramp_time = 2.0e-5
-[loading]
-control_plate = "top"
-)",
-                        "pulled_box.toml");
+  return test::pulled_box("BL", hold ? "hold_unloading_contacts = true" : "", velocity);
 }
 
 constexpr int kSteps = 4000;  // through the peak (about step 1,500) and well into the softening

@@ -23,38 +23,15 @@
 #include "rcdem/run/crack_record.hpp"
 #include "rcdem/solver/simulation.hpp"
 #include "rcdem/specimens/specimen.hpp"
+#include "small_scenarios.hpp"
 
 using namespace rcdem;
 namespace fs = std::filesystem;
 
 namespace {
 
-// A 40 mm box pulled apart fast between glued plates: it cracks through in a few thousand steps.
 Scenario pulled_box(const std::string& law, bool condense) {
-  return parse_scenario(R"(
-[specimen]
-shape = "box"
-size = [0.04, 0.04, 0.04]
-[generation]
-seed = 2
-relaxation_iterations = 100
-[contact]
-law = ")" + law + R"("
-[solver]
-preset = "basic"
-condense_elastic_contacts = )" + (condense ? "true" : "false") + R"(
-[plates.bottom]
-face = "z-"
-glued = true
-[plates.top]
-face = "z+"
-glued = true
-velocity = 0.05
-ramp_time = 2.0e-5
-[loading]
-control_plate = "top"
-)",
-                        "pulled_box.toml");
+  return test::pulled_box(law, condense ? "" : "condense_elastic_contacts = false");
 }
 
 struct Scan {

@@ -93,6 +93,21 @@ void point_rooms(const LocalPointRecord& p, Real& room_n, Real& room_s) {
   }
 }
 
+// held_kinematics at the poses of bodies a and b (BodyPoses), in the frame (n, t1), for contact i
+// of the sums (its x_B0 - x_A0): what the entry and the energy after a step read, with the
+// kernel's arithmetic.
+void kinematics_at_poses(const CondensedSums& s, std::size_t i, const Vec3& n, const Vec3& t1,
+                         const Real* pose, Index a, Index b, Real (&disp0)[3], Real (&disp)[9]) {
+  const Index ia = BodyPoses::kStride * a, ib = BodyPoses::kStride * b;
+  Real dx[3], ra[9], rb[9], arm[9];
+  for (int k = 0; k < 3; ++k) dx[k] = pose[ib + k] - pose[ia + k];
+  rotation_from_quaternion(pose[ia + 3], pose[ia + 4], pose[ia + 5], pose[ia + 6], ra);
+  rotation_from_quaternion(pose[ib + 3], pose[ib + 4], pose[ib + 5], pose[ib + 6], rb);
+  const Real nn[3] = {n.x(), n.y(), n.z()}, tt[3] = {t1.x(), t1.y(), t1.z()};
+  const Real r0[3] = {s.offset0[0][i], s.offset0[1][i], s.offset0[2][i]};
+  held_kinematics(nn, tt, ra, rb, dx, r0, disp0, disp, arm);
+}
+
 // The sums' numbers in HeldSums order (phi0, q, energy0, room_n, room_s, disp0, disp).
 constexpr int kHeldSize = 27;
 static_assert(sizeof(HeldSums) == kHeldSize * sizeof(Real), "HeldSums is 27 doubles");
@@ -326,14 +341,7 @@ bool hold_contact(const CondensedSums& sums, Index c, const ContactFrame& f, con
   s.room_s = room_s;
   // The entry's kinematics with the kernel's arithmetic (not f's), so that the change is exactly
   // zero at the entry's poses.
-  const Index ia = BodyPoses::kStride * a, ib = BodyPoses::kStride * b;
-  Real dx[3], ra[9], rb[9], arm[9];
-  for (int k = 0; k < 3; ++k) dx[k] = pose[ib + k] - pose[ia + k];
-  rotation_from_quaternion(pose[ia + 3], pose[ia + 4], pose[ia + 5], pose[ia + 6], ra);
-  rotation_from_quaternion(pose[ib + 3], pose[ib + 4], pose[ib + 5], pose[ib + 6], rb);
-  const Real nn[3] = {f.n.x(), f.n.y(), f.n.z()}, tt[3] = {f.t1.x(), f.t1.y(), f.t1.z()};
-  const Real r0[3] = {sums.offset0[0][i], sums.offset0[1][i], sums.offset0[2][i]};
-  held_kinematics(nn, tt, ra, rb, dx, r0, s.disp0, s.disp, arm);
+  kinematics_at_poses(sums, i, f.n, f.t1, pose, a, b, s.disp0, s.disp);
   h = s;
   return true;
 }
@@ -358,14 +366,8 @@ Real held_strain_energy(const CondensedSums& s, Index c, const HeldSums& h, cons
                         const Vec3& t1, const Real* pose, Index a, Index b) {
   // The kernel's arithmetic (held_block_lanes), on the stored frame: the same bits.
   const auto i = static_cast<std::size_t>(c);
-  const Index ia = BodyPoses::kStride * a, ib = BodyPoses::kStride * b;
-  Real dx[3], ra[9], rb[9], disp0[3], disp[9], arm[9];
-  for (int k = 0; k < 3; ++k) dx[k] = pose[ib + k] - pose[ia + k];
-  rotation_from_quaternion(pose[ia + 3], pose[ia + 4], pose[ia + 5], pose[ia + 6], ra);
-  rotation_from_quaternion(pose[ib + 3], pose[ib + 4], pose[ib + 5], pose[ib + 6], rb);
-  const Real nn[3] = {n.x(), n.y(), n.z()}, tt[3] = {t1.x(), t1.y(), t1.z()};
-  const Real r0[3] = {s.offset0[0][i], s.offset0[1][i], s.offset0[2][i]};
-  held_kinematics(nn, tt, ra, rb, dx, r0, disp0, disp, arm);
+  Real disp0[3], disp[9];
+  kinematics_at_poses(s, i, n, t1, pose, a, b, disp0, disp);
   const Real rc[3] = {s.centroid[0][i], s.centroid[1][i], s.centroid[2][i]};
   const Real* hd = reinterpret_cast<const Real*>(&h);
   Real du[3], dd[9];
