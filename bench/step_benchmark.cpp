@@ -2,7 +2,7 @@
 // bandwidth (issue: bench/ throughput and bandwidth, YADE side by side).
 //
 // Usage: rcdem_step_bench SCENARIO.toml STEPS [WARMUP=50] [REPEATS=1] [--checkpoint FILE]
-//                         [--save-checkpoint DIR] [--threads N,N,...]
+//                         [--save-checkpoint DIR] [--threads N|auto,...]
 //   Generates the specimen (not timed); with --checkpoint, restores the state a run of that
 //   scenario saved (run/checkpoint: a beam cracked half way through, say; the specimen must be the
 //   same, the scenario's hash is not checked, so a copy of the scenario with other solver or
@@ -10,11 +10,14 @@
 //   them is written to DIR/checkpoint_<step>.rcp, so that a cracked state is made once and timed
 //   at several thread counts; --threads times each count in turn, in this one process, each from
 //   the state after the warm-up: one generation for all, and the same steps, which must end on
-//   the same bits: end_strain_energy_J), then times STEPS calls of
+//   the same bits: end_strain_energy_J; `auto` is rcdem run's default: the count follows the
+//   free cores up to the runtime's, core/thread_count_tuner.hpp), then times STEPS calls of
 //   step() with steady_clock, REPEATS times back to back, and reports the fastest repetition (on a
 //   shared machine the others carry its neighbours' load; bench/throughput.sh gives YADE the
 //   same). Stop rules, history and snapshots are not involved (this is the step alone).
-// Prints one line of key=value pairs (scenario, threads, bodies, contacts, local_points, steps,
+// Prints one line of key=value pairs (scenario, threads (a count, or auto with threads_mean,
+// threads_last and threads_changes: the tuner's mean count over the steps, its last and how often
+// it changed), bodies, contacts, local_points, steps,
 // seconds, steps_per_s, particle_steps_per_s, contact_steps_per_s, local_point_steps_per_s,
 // bytes_per_step, bytes_per_local_point, achieved_GBps, condensed_contacts: those evaluated from
 // their sums at the last step, contact/elastic_condensation.hpp; held_contacts: damaged ones held
@@ -36,11 +39,9 @@
 #include <string>
 #include <vector>
 
-#if defined(_OPENMP)
-#include <omp.h>
-#endif
 #include <unistd.h>
 
+#include "rcdem/core/thread_count_tuner.hpp"
 #include "rcdem/core/thread_waiting.hpp"
 #include "rcdem/config/scenario.hpp"
 #include "rcdem/core/error.hpp"
@@ -202,22 +203,26 @@ namespace {
 struct BenchArgs {
   std::string path, checkpoint, save_dir;
   long steps = 0, warmup = 50, repeats = 1;
-  std::vector<int> threads;  // --threads: each count timed from the same state, in one process
+  std::vector<int> threads;  // --threads: each count (0: auto) timed from the same state
 };
 
 const char* const kUsage =
     "usage: rcdem_step_bench SCENARIO.toml STEPS [WARMUP=50] [REPEATS=1] [--checkpoint FILE] "
-    "[--save-checkpoint DIR] [--threads N,N,...]\n";
+    "[--save-checkpoint DIR] [--threads N|auto,...]\n";
 
 std::vector<int> parse_threads(const std::string& text) {
   std::vector<int> out;
   std::size_t at = 0;
   while (at <= text.size()) {
     const std::size_t comma = std::min(text.find(',', at), text.size());
-    std::size_t used = 0;
-    const int t = std::stoi(text.substr(at, comma - at), &used);
-    if (used != comma - at || t <= 0) throw std::invalid_argument(text);
-    out.push_back(t);
+    if (text.substr(at, comma - at) == "auto") {
+      out.push_back(0);
+    } else {
+      std::size_t used = 0;
+      const int t = std::stoi(text.substr(at, comma - at), &used);
+      if (used != comma - at || t <= 0) throw std::invalid_argument(text);
+      out.push_back(t);
+    }
     at = comma + 1;
   }
   return out;
@@ -258,27 +263,31 @@ bool parse_args(int argc, char** argv, BenchArgs& a) {
   if (a.steps <= 0 || a.warmup < 0 || a.repeats <= 0) {
     std::fprintf(stderr,
                  "rcdem_step_bench: STEPS and REPEATS must be > 0, WARMUP >= 0 and --threads a "
-                 "comma-separated list of counts > 0 (whole numbers)\n");
+                 "comma-separated list of counts > 0 (whole numbers) or auto\n");
     return false;
   }
   return true;
 }
 
-// Times STEPS steps REPEATS times from the simulation's present state and prints the result
-// lines (see the file's head). `setup_s` is reported as given.
-void time_and_report(rcdem::Simulation& sim, const BenchArgs& a, double setup_s) {
+// Times STEPS steps REPEATS times from the simulation's present state at `threads` (0: auto, the
+// runtime's count the most) and prints the result lines (see the file's head). `setup_s` is
+// reported as given.
+void time_and_report(rcdem::Simulation& sim, const BenchArgs& a, double setup_s, int threads) {
   double seconds = 0, cpu_seconds = 0;
   std::string repeat_seconds;
+  rcdem::ThreadRecord used;
   for (long r = 0; r < a.repeats; ++r) {
+    rcdem::StepThreads step_threads(threads);
     const auto t0 = std::chrono::steady_clock::now();
     const std::clock_t c0 = std::clock();
-    for (long k = 0; k < a.steps; ++k) sim.step();
+    for (long k = 0; k < a.steps; ++k) step_threads.step([&] { sim.step(); });
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const double cpu = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
     repeat_seconds += (r ? "," : "") + std::to_string(s);
     if (r == 0 || s < seconds) {
       seconds = s;
       cpu_seconds = cpu;
+      used = step_threads.record();
     }
   }
 
@@ -299,12 +308,14 @@ void time_and_report(rcdem::Simulation& sim, const BenchArgs& a, double setup_s)
   const auto points = static_cast<double>(sim.specimen().contacts.point_count());
   const double rate = static_cast<double>(a.steps) / seconds;
   std::printf(
-      "scenario=%s threads=%d bodies=%.0f contacts=%.0f local_points=%.0f steps=%ld "
+      "scenario=%s threads=%s threads_mean=%.3f threads_last=%d threads_changes=%ld bodies=%.0f "
+      "contacts=%.0f local_points=%.0f steps=%ld "
       "seconds=%.4f steps_per_s=%.3f particle_steps_per_s=%.4g contact_steps_per_s=%.4g "
       "local_point_steps_per_s=%.4g bytes_per_step=%.0f bytes_per_local_point=%.1f "
       "achieved_GBps=%.3f setup_seconds=%.2f condensed_contacts=%.0f held_contacts=%ld "
       "cpu_seconds=%.4f repeat_seconds=%s strain_energy_seconds=%.5f end_strain_energy_J=%.17g\n",
-      a.path.c_str(), rcdem::io::thread_count(), bodies, contacts, points, a.steps, seconds, rate,
+      a.path.c_str(), used.tuned ? "auto" : std::to_string(used.max).c_str(), used.mean, used.last,
+      static_cast<long>(used.changes), bodies, contacts, points, a.steps, seconds, rate,
       rate * bodies, rate * contacts, rate * points, bytes, bytes / points, bytes * rate * 1e-9,
       setup_s, bc.condensed_contacts, static_cast<long>(sim.held_contacts()), cpu_seconds,
       repeat_seconds.c_str(), strain_energy_s, strain_energy);
@@ -333,11 +344,8 @@ void time_each_thread_count(rcdem::Simulation& sim, const BenchArgs& a, double s
   fs::create_directories(dir);
   const fs::path state = rcdem::io::write_checkpoint(dir, rcdem::io::CheckpointParts{&sim}, 0);
   for (const int t : a.threads) {
-#if defined(_OPENMP)
-    omp_set_num_threads(t);
-#endif
     rcdem::io::restore_checkpoint(state, rcdem::io::CheckpointParts{&sim}, 0);
-    time_and_report(sim, a, setup_s);
+    time_and_report(sim, a, setup_s, t);
   }
   if (own_dir) fs::remove_all(dir);
 }
@@ -372,7 +380,7 @@ int main(int argc, char** argv) {
       std::filesystem::create_directories(a.save_dir);
       rcdem::io::write_checkpoint(a.save_dir, rcdem::io::CheckpointParts{&sim}, 0);
     }
-    time_and_report(sim, a, setup_s);
+    time_and_report(sim, a, setup_s, rcdem::runtime_thread_count());
   } catch (const rcdem::Error& e) {
     std::fprintf(stderr, "rcdem_step_bench: %s\n", e.what());
     return 1;

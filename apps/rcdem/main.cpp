@@ -110,6 +110,17 @@ void parse_checkpoint_every(const std::string& text, rcdem::RunOptions& o) {
   }
 }
 
+// --threads: "auto" (0: follow the free cores, up to OMP_NUM_THREADS or the cores) or a count.
+int parse_threads(const std::string& text) {
+  if (text == "auto") return 0;
+  char* end = nullptr;
+  errno = 0;
+  const long v = std::strtol(text.c_str(), &end, 10);
+  if (end == text.c_str() || *end != '\0' || errno != 0 || v < 1 || v > 4096)
+    rcdem::fail("--threads '{}': expected auto or a whole number of threads from 1 to 4096", text);
+  return static_cast<int>(v);
+}
+
 // The --checkpoint-every a run was started (or last resumed) with, from its manifest; empty if
 // it recorded none.
 std::string recorded_checkpoint_every(const fs::path& dir) {
@@ -137,9 +148,10 @@ void restore_interrupted_force(const fs::path& dir) {
 int run(const fs::path& scenario_path, fs::path out, bool force, const fs::path& resume,
         std::string checkpoint_every, bool checkpoint_every_given,
         std::optional<std::uint64_t> seed, const std::vector<std::string>& sets,
-        const std::vector<std::string>& command) {
+        const std::string& threads, const std::vector<std::string>& command) {
   rcdem::RunOptions options;
   options.handle_signals = true;
+  options.threads = parse_threads(threads);
   options.command = command;
   // A resumed run keeps its interval unless told otherwise (issue 28).
   if (!resume.empty() && !checkpoint_every_given) {
@@ -336,6 +348,12 @@ int main(int argc, char** argv) {
   runc->add_option("--seed", run_seed,
                    "Run on another packing: generation.seed set to N (kept in DIR/scenario.toml)")
       ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{9'000'000'000'000'000}));
+  std::string run_threads = "auto";
+  runc->add_option("--threads", run_threads,
+                   "Threads: auto follows the cores other work leaves free, up to OMP_NUM_THREADS "
+                   "(or every core); N runs exactly N. The results are the same bits at any count")
+      ->type_name("auto|N")
+      ->capture_default_str();
 
   double size = 0.160, rate_factor = 1.0, tolerance = 0.05;
   int iterations = 8;
@@ -425,7 +443,7 @@ int main(int argc, char** argv) {
       return run(scenario, out, force, resume, checkpoint_every,
                  runc->count("--checkpoint-every") > 0,
                  runc->count("--seed") > 0 ? std::optional<std::uint64_t>(run_seed) : std::nullopt,
-                 sets, std::vector<std::string>(argv, argv + argc));
+                 sets, run_threads, std::vector<std::string>(argv, argv + argc));
     if (*cal)
       return calibrate(scenario, out, force, size, rate_factor, sets, target, tolerance, iterations,
                        peak_only, tension_lever);

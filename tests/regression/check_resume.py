@@ -17,7 +17,8 @@ on tests/regression/small_run.toml (4,000 steps here):
   * a full disk (RLIMIT_FSIZE: writes fail with EFBIG) during a resumed run: a clear error that
     says how to continue, the earlier checkpoints intact, and the run then completes;
   * 1 and 2 threads give bitwise the same outputs on a 100 mm cube (15,758 contacts, 2,517
-    bodies: the parallel loops run in parallel).
+    bodies: the parallel loops run in parallel), and so does --threads 1 against the default
+    (auto, the count following the free cores); a bad --threads is one line naming it.
 
 usage: check_resume.py RCDEM_BINARY SOURCE_DIR
 """
@@ -41,7 +42,9 @@ from checklist import Checklist  # noqa: E402
 rcdem, source = sys.argv[1], sys.argv[2]
 checks = Checklist()
 check = checks.check
-WALL_CLOCK = {"seconds", "loop_seconds", "steps_per_second"}
+# What depends on the machine's load: wall times, and the thread counts a run followed (--threads
+# auto changes the count with the free cores; the results do not change).
+WALL_CLOCK = {"seconds", "loop_seconds", "steps_per_second", "threads"}
 CKPT = re.compile(r"^checkpoint_(\d{12})\.rcp$")
 seed = int(os.environ.get("RCDEM_TEST_SEED", random.randrange(1 << 30)))
 rng = random.Random(seed)
@@ -369,6 +372,23 @@ try:
           f"{s1['specimen']['contacts']} contacts (> 2048: parallel), {s1['damaged_points']} damaged points")
     check(json.load(open(os.path.join(two, "manifest.json")))["threads"] == 2, "the second ran at 2 threads")
     same_as(one, two, "1 thread vs 2 threads")
+    # --threads: auto (the default) follows the free cores up to OMP_NUM_THREADS; N fixes it.
+    t2 = json.load(open(os.path.join(two, "summary.json")))["threads"]
+    check(t2["tuned"] and t2["max"] == 2 and 1.0 <= t2["mean"] <= 2.0,
+          f"by default the count is tuned, up to OMP_NUM_THREADS = 2 ({t2})")
+    fixed = os.path.join(tmp, "t1_fixed")
+    r = run(["run", cube, "-o", fixed, "--threads", "1"], threads=2)
+    t1 = json.load(open(os.path.join(fixed, "summary.json")))["threads"] if r.returncode == 0 else {}
+    check(r.returncode == 0 and json.load(open(os.path.join(fixed, "manifest.json")))["threads"] == 1
+          and t1 == {"tuned": False, "max": 1, "last": 1, "mean": 1.0, "changes": 0},
+          f"--threads 1 runs one thread where OMP_NUM_THREADS is 2 ({t1})")
+    same_as(two, fixed, "--threads auto vs --threads 1")
+    for bad in ("0", "two", "1.5", "-3"):
+        r = run(["run", cube, "-o", os.path.join(tmp, "bad_threads"), "--threads", bad])
+        check(r.returncode != 0 and r.stderr.count("\n") == 1 and f"--threads '{bad}'" in r.stderr
+              and "expected auto or a whole number" in r.stderr
+              and not os.path.exists(os.path.join(tmp, "bad_threads")),
+              f"--threads {bad}: one line naming it, nothing written ({r.stderr.strip()})")
 finally:
     shutil.rmtree(tmp, ignore_errors=True)
 

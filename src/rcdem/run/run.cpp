@@ -28,6 +28,7 @@
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
 #include "rcdem/core/simd_level.hpp"
+#include "rcdem/core/thread_count_tuner.hpp"
 #include "rcdem/io/atomic_file.hpp"
 #include "rcdem/io/plot_tool.hpp"
 #include "rcdem/io/specimen_output.hpp"
@@ -235,7 +236,7 @@ void print_set_up(const Scenario& sc, const Simulation& sim) {
 class RunLoop {
  public:
   RunLoop(const Scenario& sc, const fs::path& out, const RunOptions& opt, RunSession& session,
-          Simulation& sim);
+          Simulation& sim, StepThreads& threads);
   // Steps until a stop rule triggers (true) or a signal interrupts (false).
   bool run(const std::function<void(const Simulation&)>& on_step);
   RunSummary finish();
@@ -261,6 +262,7 @@ class RunLoop {
   const RunOptions& opt_;
   RunSession& session_;
   Simulation& sim_;
+  StepThreads& threads_;
   const TestMeasures control_;
   io::History history_;
   io::SnapshotWriter snapshots_;
@@ -277,12 +279,13 @@ class RunLoop {
 };
 
 RunLoop::RunLoop(const Scenario& sc, const fs::path& out, const RunOptions& opt,
-                 RunSession& session, Simulation& sim)
+                 RunSession& session, Simulation& sim, StepThreads& threads)
     : sc_(sc),
       out_(out),
       opt_(opt),
       session_(session),
       sim_(sim),
+      threads_(threads),
       control_(sim, sc),
       history_(sim, sc),
       snapshots_(out, sc.output.binary_vtu, sc.output.write_facets),
@@ -366,7 +369,7 @@ void RunLoop::warn_output_volume() const {
 // One step and the control's load after it; a failure keeps what the run recorded so far.
 std::pair<Real, Real> RunLoop::step_once() {
   try {
-    sim_.step();
+    threads_.step([this] { sim_.step(); });
     const Real load = control_.load(), displacement = control_.displacement();
     check_finite(sim_, load, displacement);
     return {load, displacement};
@@ -571,6 +574,9 @@ nlohmann::ordered_json RunLoop::summary_json(const RunSummary& r, double wall, d
   j["loop_seconds"] = loop_s;
   j["steps_per_second"] = loop_s > 0.0 ? static_cast<double>(r.steps) / loop_s : 0.0;
   j["seconds"] = wall;
+  const ThreadRecord t = threads_.record();
+  j["threads"] = {{"tuned", t.tuned}, {"max", t.max}, {"last", t.last}, {"mean", t.mean},
+                  {"changes", t.changes}};
   j["rcdem"] = {{"version", build_version()},
                 {"git_hash", build_git_hash()},
                 {"build", build_flavour()},
@@ -663,11 +669,12 @@ RunSummary guarded(RunSession& session, Body&& body) {
 RunSummary run_scenario(const Scenario& sc, const fs::path& out, const RunOptions& opt,
                         const std::function<void(const Simulation&)>& on_step) {
   validate_run(sc);
+  StepThreads threads(opt.threads);
   RunSession session(sc, out, opt);
   return guarded(session, [&] {
     std::optional<Simulation> sim;
     build(sc, out, opt, session, sim);
-    RunLoop loop(sc, out, opt, session, *sim);
+    RunLoop loop(sc, out, opt, session, *sim, threads);
     return loop.run(on_step) ? loop.finish() : loop.interrupted();
   });
 }
@@ -675,10 +682,11 @@ RunSummary run_scenario(const Scenario& sc, const fs::path& out, const RunOption
 RunSummary run_simulation(const Scenario& sc, Simulation& sim, const fs::path& out,
                           const RunOptions& opt) {
   validate_run(sc);
+  StepThreads threads(opt.threads);
   RunSession session(sc, out, opt);
   return guarded(session, [&] {
     start(sc, out, opt, session, sim);
-    RunLoop loop(sc, out, opt, session, sim);
+    RunLoop loop(sc, out, opt, session, sim, threads);
     return loop.run({}) ? loop.finish() : loop.interrupted();
   });
 }

@@ -65,6 +65,9 @@ struct RunOptions {
   // may be interrupted by it, so it keeps the directory's lock as a checkpointing run does.
   std::function<RunDecision(Simulation&)> decide;
   std::int64_t decide_every = 1;
+  // Threads (--threads): 0 follows the free cores during the loop, up to the OpenMP runtime's
+  // count (core/thread_count_tuner.hpp); N > 0 runs exactly N, the specimen's generation included.
+  int threads = 0;
 };
 
 // Checks that the scenario describes a run that can end: plates, a control plate where a rule

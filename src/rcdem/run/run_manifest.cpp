@@ -13,9 +13,6 @@
 #include <fstream>
 #include <sstream>
 
-#if defined(_OPENMP)
-#include <omp.h>
-#endif
 
 #include "rcdem/core/error.hpp"
 #include "rcdem/io/atomic_file.hpp"
@@ -63,14 +60,6 @@ std::string iso_now() {
   char buf[32];
   std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
   return buf;
-}
-
-int thread_count() {
-#if defined(_OPENMP)
-  return omp_get_max_threads();
-#else
-  return 1;
-#endif
 }
 
 std::string read_text(const fs::path& p) {

@@ -52,7 +52,6 @@ struct Inputs {
 Inputs scenario_inputs(const std::string& text, const std::filesystem::path& file);
 
 std::string iso_now();  // UTC, ISO 8601
-int thread_count();     // OpenMP threads a run will use (1 without OpenMP)
 std::string read_text(const std::filesystem::path& p);            // "" if unreadable
 void remove_stale_temporaries(const std::filesystem::path& dir);  // *.tmp.* of DIR, DIR/snapshots
 

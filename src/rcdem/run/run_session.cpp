@@ -4,6 +4,7 @@
 
 #include "rcdem/core/build_info.hpp"
 #include "rcdem/core/error.hpp"
+#include "rcdem/core/thread_count_tuner.hpp"
 #include "rcdem/run/checkpoint.hpp"
 
 namespace rcdem {
@@ -88,7 +89,7 @@ void RunSession::fill_manifest(const Scenario& sc) {
     j["rcdem_version"] = version;
     j["git_hash"] = git;
     j["build"] = build_flavour();
-    j["threads"] = io::thread_count();
+    j["threads"] = runtime_thread_count();
     j["start_time"] = io::iso_now();
     j["end_time"] = nullptr;
     j["exit_state"] = "running";
@@ -101,7 +102,7 @@ void RunSession::fill_manifest(const Scenario& sc) {
   j["rcdem_version"] = version;
   j["git_hash"] = git;
   j["build"] = build_flavour();
-  j["threads"] = io::thread_count();
+  j["threads"] = runtime_thread_count();
   j["exit_state"] = "running";
   j["end_time"] = nullptr;
   j["sessions"].push_back({{"start_time", io::iso_now()},
@@ -109,7 +110,7 @@ void RunSession::fill_manifest(const Scenario& sc) {
                            {"rcdem_version", version},
                            {"git_hash", git},
                            {"build", build_flavour()},
-                           {"threads", io::thread_count()},
+                           {"threads", runtime_thread_count()},
                            {"command", opt_.command},
                            {"resumed_from", nullptr},
                            {"exit_state", "running"}});
