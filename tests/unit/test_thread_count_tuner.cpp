@@ -87,6 +87,15 @@ TEST(ThreadCountTuner, FollowsCoresTakenAndGivenBack) {
   EXPECT_EQ(tuner.chosen(), 16);
 }
 
+// A run that starts with a core taken finds the free ones within its first second.
+TEST(ThreadCountTuner, ARunStartingOnALoadedMachineFindsTheFreeCoresAtOnce) {
+  SharedMachine machine;
+  machine.free = 15;
+  ThreadCountTuner tuner(up_to(16));
+  run_for(tuner, machine, 1.0);
+  EXPECT_EQ(tuner.chosen(), 15);
+}
+
 // Half the cores taken: every count from 9 to 16 is as slow as the next, so the check goes down
 // past them (15, 14, 12, 8) and takes 8 within seconds.
 TEST(ThreadCountTuner, HalfTheCoresTakenIsFoundPastTheEquallySlowCounts) {

@@ -13,7 +13,7 @@ ThreadCountTuner::ThreadCountTuner(const ThreadTuning& tuning)
     : t_(tuning),
       chosen_(std::max(1, tuning.max_threads)),
       running_(chosen_),
-      next_check_(tuning.first_check_seconds),
+      next_check_(0.0),  // a run that starts on a loaded machine checks after its first window
       check_interval_(tuning.first_check_seconds) {}
 
 void ThreadCountTuner::after_step(double seconds) {

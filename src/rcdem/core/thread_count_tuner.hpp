@@ -20,8 +20,11 @@ struct ThreadTuning {
   int max_threads = 1;             // the most the step may use (OMP_NUM_THREADS or the cores)
   double window_seconds = 0.2;     // a rate is measured over at least this long ...
   std::int64_t window_steps = 3;   // ... and this many steps
-  double first_check_seconds = 5;  // the neighbouring counts are timed after this long ...
-  double last_check_seconds = 40;  // ... doubling up to this after a check that changes nothing
+  // The neighbouring counts are timed after the first window, at once after a change, and then
+  // after 2x first_check_seconds, doubling after each check that changes nothing, up to
+  // last_check_seconds.
+  double first_check_seconds = 5;
+  double last_check_seconds = 40;
   double gain = 1.05;              // another count is taken only when this much faster
   double jump = 1.5;               // a window this much slower or faster checks at once
 };
