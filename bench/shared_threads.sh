@@ -7,16 +7,20 @@
 #
 # Usage: bash bench/shared_threads.sh OUT_DIR [BUILD_DIR=build]
 #   1. header: date, nproc, CPU model, rcdem --version;
-#   2. per load (0, 1, 2 busy processes; 2 only where nproc > 2), ROUNDS alternating rounds of
-#      rcdem_step_bench --threads auto,N,N-1,N-2,1 (those above 1; one process, every count from the same state,
-#      which must end on the same bits) on the 160 mm cube intact (STEPS_CUBE steps) and cracked
-#      (its tension checkpoint past the peak, made once at every core; STEPS_CRACK steps);
-#   3. `rcdem run` of the tension cube (RUN_STEPS steps, no snapshots) at auto and at every core,
+#   2. per load (0, 1, 2 busy processes; 2 only where nproc > 2), ROUNDS rounds of
+#      rcdem_step_bench --threads auto,F (F: the free cores, the best fixed count; one process,
+#      both counts from the same state, which must end on the same bits) on the 160 mm cube intact
+#      (LONG_CUBE steps) and cracked (its tension checkpoint past the peak, made once at every
+#      core; LONG_CRACK steps): what following the free cores costs against knowing them;
+#   3. the same loads, a few steps (STEPS_CUBE, STEPS_CRACK) at --threads auto,N,N-1,N-2,1 (those
+#      above 1): what too many threads cost (auto's rate here is mostly its first checks);
+#   4. `rcdem run` of the tension cube (RUN_STEPS steps, no snapshots) at auto and at every core,
 #      with one busy process started RUN_BUSY_AT seconds into the run and stopped RUN_BUSY_FOR
 #      seconds later: the loop's rate from summary.json, and the count auto ended at.
 #   Every result line is key=value; shared_threads.csv (one row per timed count) goes to OUT_DIR.
-# Environment: ROUNDS (2), STEPS_CUBE (600), STEPS_CRACK (150), RUN_STEPS (6000), RUN_BUSY_AT (3),
-# RUN_BUSY_FOR (6), QUICK=1 (a check of the script itself: few steps).
+# Environment: ROUNDS (2), LONG_CUBE (8000), LONG_CRACK (3000), STEPS_CUBE (600), STEPS_CRACK
+# (150), RUN_STEPS (6000), RUN_BUSY_AT (3), RUN_BUSY_FOR (6), SKIP_SHORT=1 (no section 3),
+# QUICK=1 (a check of the script itself: few steps).
 set -uo pipefail
 cd "$(dirname "$0")/.."
 OUT=${1:?usage: bash bench/shared_threads.sh OUT_DIR [BUILD_DIR]}
@@ -27,9 +31,11 @@ BENCH="$BUILD/bench/rcdem_step_bench"
 NP=$(nproc --all)
 ROUNDS=${ROUNDS:-2}
 if [[ "${QUICK:-0}" == 1 ]]; then
-  STEPS_CUBE=40 STEPS_CRACK=10 CRACK_AT=600 RUN_STEPS=300 RUN_BUSY_AT=0.5 RUN_BUSY_FOR=1
+  STEPS_CUBE=40 STEPS_CRACK=10 LONG_CUBE=80 LONG_CRACK=20 CRACK_AT=600 RUN_STEPS=300
+  RUN_BUSY_AT=0.5 RUN_BUSY_FOR=1
 else
   STEPS_CUBE=${STEPS_CUBE:-600} STEPS_CRACK=${STEPS_CRACK:-150} CRACK_AT=12000
+  LONG_CUBE=${LONG_CUBE:-8000} LONG_CRACK=${LONG_CRACK:-3000}
   RUN_STEPS=${RUN_STEPS:-6000} RUN_BUSY_AT=${RUN_BUSY_AT:-3} RUN_BUSY_FOR=${RUN_BUSY_FOR:-6}
 fi
 COUNTS="auto,$NP"
@@ -52,16 +58,32 @@ TENSION=examples/uniaxial/tension.toml
 OMP_NUM_THREADS=$NP "$BENCH" "$TENSION" 1 "$CRACK_AT" 1 --save-checkpoint "$WORK/crack" >/dev/null
 CRACKED=$(ls "$WORK"/crack/checkpoint_*.rcp | tail -1)
 
-say "## the step: auto against fixed counts"
+say "## the step over many steps: auto against the free cores (the best fixed count)"
 LOADS="0 1"
 ((NP > 2)) && LOADS+=" 2"
 for r in $(seq 1 "$ROUNDS"); do
   for busy in $LOADS; do
     busy_start "$busy"
+    free=$((NP - busy > 1 ? NP - busy : 1))
+    for spec in "cube $CUBE $LONG_CUBE 50" "cracked $TENSION $LONG_CRACK 0 --checkpoint $CRACKED"; do
+      read -r -a a <<< "$spec"
+      OMP_NUM_THREADS=$NP "$BENCH" "${a[1]}" "${a[2]}" "${a[3]}" 1 "${a[@]:4}" --threads "auto,$free" \
+          2>&1 | grep -v '^# bytes' | sed "s/^/round=$r run=long busy_processes=$busy state=${a[0]} /" |
+        tee -a "$LOG"
+    done
+    busy_stop
+  done
+done
+
+say "## the step over a few steps: every core and fewer, fixed (and auto finding its count)"
+for r in $(seq 1 "$ROUNDS"); do
+  [[ "${SKIP_SHORT:-0}" == 1 ]] && break
+  for busy in $LOADS; do
+    busy_start "$busy"
     for spec in "cube $CUBE $STEPS_CUBE 50" "cracked $TENSION $STEPS_CRACK 0 --checkpoint $CRACKED"; do
       read -r -a a <<< "$spec"
       OMP_NUM_THREADS=$NP "$BENCH" "${a[1]}" "${a[2]}" "${a[3]}" 1 "${a[@]:4}" --threads "$COUNTS" \
-          2>&1 | grep -v '^# bytes' | sed "s/^/round=$r busy_processes=$busy state=${a[0]} /" |
+          2>&1 | grep -v '^# bytes' | sed "s/^/round=$r run=short busy_processes=$busy state=${a[0]} /" |
         tee -a "$LOG"
     done
     busy_stop
@@ -88,13 +110,13 @@ done
 /usr/bin/env python3 - "$LOG" "$OUT/shared_threads.csv" <<'EOF'
 import re, sys
 with open(sys.argv[2], "w") as f:
-    f.write("round,busy_processes,state,threads,threads_mean,threads_last,steps_per_s,"
+    f.write("round,run,busy_processes,state,threads,threads_mean,threads_last,steps_per_s,"
             "end_strain_energy_J\n")
     for line in open(sys.argv[1]):
         if not line.startswith("round="):
             continue
         kv = dict(re.findall(r"(\w+)=(\S+)", line))
-        f.write(",".join(kv[k] for k in ("round", "busy_processes", "state", "threads",
+        f.write(",".join(kv[k] for k in ("round", "run", "busy_processes", "state", "threads",
                  "threads_mean", "threads_last", "steps_per_s", "end_strain_energy_J")) + "\n")
 EOF
 say "# done $(date -u +%Y-%m-%dT%H:%M:%SZ)"

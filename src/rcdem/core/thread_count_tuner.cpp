@@ -53,13 +53,32 @@ void ThreadCountTuner::window_done(double rate) {
         running_ = chosen_ + 1;
         return;
       }
-      decide();
+      measure_again();
       return;
     case Phase::Above:
       above_ = rate;
-      decide();
+      measure_again();
       return;
+    case Phase::Again: {
+      // The present count's rate before and after the checks, so that a neighbour's load that
+      // came or went during them does not pass for a better count.
+      const double before = reference_;
+      reference_ = rate;
+      decide(std::max(before, rate));
+      return;
+    }
   }
+}
+
+// A check whose best count is more than `jump` times faster is decided at once: a count above
+// the free cores need not be timed again.
+void ThreadCountTuner::measure_again() {
+  if (std::max(below_, above_) > t_.jump * reference_) {
+    decide(reference_);
+    return;
+  }
+  phase_ = Phase::Again;
+  running_ = chosen_;
 }
 
 void ThreadCountTuner::start_check() {
@@ -68,12 +87,13 @@ void ThreadCountTuner::start_check() {
   running_ = chosen_ > 1 ? chosen_ - 1 : chosen_ + 1;
 }
 
-// The fastest of the three counts, where it beats the present one by the gain. After a change
-// the new count's neighbours are checked at once (a collapse may need several steps down).
-void ThreadCountTuner::decide() {
+// The fastest of the counts checked, where it beats the present one (steps/s `present`) by the
+// gain. After a change the new count's neighbours are checked at once (a collapse may need
+// several steps down).
+void ThreadCountTuner::decide(double present) {
   const bool below_best = below_ >= above_;
   const double best = below_best ? below_ : above_;
-  if (best > t_.gain * reference_) {
+  if (best > t_.gain * present) {
     chosen_ = below_best ? below_count_ : chosen_ + 1;
     reference_ = best;
     ++changes_;

@@ -5,7 +5,8 @@
 // one of 16 cores taken stepped at 0.19 of 1 thread's rate, 15 threads at 7.1 times it
 // (bench/RESULTS.md, "Many cores"). The results are the same bits at any thread count, so the
 // count may follow the free cores during a run: every so often the step is timed one window at
-// one thread fewer and one more than the present count, and the fastest is kept; where the count
+// one thread fewer and one more than the present count, then at the present count again, and the
+// fastest is kept where it beats the present count before and after the checks; where the count
 // below is no faster and no slower (every count above the free cores is as slow as the next), the
 // check goes on down, 2, 4, 8 ... threads below the present count. A rate that
 // jumps (a neighbour starts or stops) checks at once; a check that changes nothing waits twice as
@@ -17,16 +18,16 @@
 namespace rcdem {
 
 struct ThreadTuning {
-  int max_threads = 1;             // the most the step may use (OMP_NUM_THREADS or the cores)
-  double window_seconds = 0.2;     // a rate is measured over at least this long ...
-  std::int64_t window_steps = 3;   // ... and this many steps
+  int max_threads = 1;            // the most the step may use (OMP_NUM_THREADS or the cores)
+  double window_seconds = 0.2;    // a rate is measured over at least this long ...
+  std::int64_t window_steps = 3;  // ... and this many steps
   // The neighbouring counts are timed after the first window, at once after a change, and then
   // after 2x first_check_seconds, doubling after each check that changes nothing, up to
   // last_check_seconds.
   double first_check_seconds = 5;
   double last_check_seconds = 40;
-  double gain = 1.05;              // another count is taken only when this much faster
-  double jump = 1.5;               // a window this much slower or faster checks at once
+  double gain = 1.05;  // another count is taken only when this much faster
+  double jump = 1.5;   // a window this much slower or faster checks at once
 };
 
 // The decision alone, fed the wall time of each step (testable with made-up times).
@@ -40,10 +41,11 @@ class ThreadCountTuner {
   void after_step(double seconds);
 
  private:
-  enum class Phase { Measure, Below, Above };
+  enum class Phase { Measure, Below, Above, Again };
   void window_done(double rate);
   void start_check();
-  void decide();
+  void measure_again();
+  void decide(double present);
 
   ThreadTuning t_;
   int chosen_, running_;
