@@ -21,7 +21,8 @@ export OMP_NUM_THREADS=${OMP_NUM_THREADS:-1}
 PY=${PY:-/usr/bin/python3}  # Debian's; another where it is elsewhere (PY=python3)
 WORK=$(mktemp -d)
 trap 'rm -rf "$WORK"' EXIT
-sets=(--set stop.steps="$STEPS" --set output.snapshots=0)
+# A fixed count, as the step bench's: the run's bookkeeping, not its thread tuning, is measured.
+sets=(--set stop.steps="$STEPS" --set output.snapshots=0 --threads "$OMP_NUM_THREADS")
 [[ -n "${HISTORY_ROWS:-}" ]] && sets+=(--set output.history_rows="$HISTORY_ROWS")
 echo "# bench/run_vs_step.sh $SCENARIO $STEPS, $(date -u +%Y-%m-%dT%H:%M:%SZ), nproc $(nproc --all)," \
      "\"$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- | sed 's/^ *//')\"," \

@@ -271,7 +271,9 @@ class RunLoop {
   const io::CheckpointParts parts_;
   Real expected_ = 0.0;
   double wall_before_ = 0.0, loop_before_ = 0.0;
-  std::chrono::steady_clock::time_point loop_start_, last_checkpoint_;
+  // The loop's end: the final files (a last snapshot, history.csv, broken_points.csv) are the
+  // run's output, not its loop (summary.json's loop_seconds).
+  std::chrono::steady_clock::time_point loop_start_, loop_end_, last_checkpoint_;
   std::int64_t checkpointed_step_ = -1;
   fs::path last_checkpoint_file_;
   std::string stop_reason_;
@@ -425,6 +427,7 @@ bool RunLoop::run(const std::function<void(const Simulation&)>& on_step) {
       return false;
     }
   }
+  loop_end_ = std::chrono::steady_clock::now();
   progress.close();
   return true;
 }
@@ -607,7 +610,8 @@ RunSummary RunLoop::finish() {
   const auto end = std::chrono::steady_clock::now();
   const double wall =
       wall_before_ + std::chrono::duration<double>(end - session_.wall_start()).count();
-  const double loop_s = loop_before_ + std::chrono::duration<double>(end - loop_start_).count();
+  const double loop_s =
+      loop_before_ + std::chrono::duration<double>(loop_end_ - loop_start_).count();
   r.json = summary_json(r, wall, loop_s);
   io::write_file_atomically(out_ / "summary.json", r.json.dump(2) + "\n");
   r.history_columns = history_.columns();
