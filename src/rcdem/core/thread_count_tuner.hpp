@@ -13,7 +13,6 @@
 // long before the next (in the manner of GROMACS's run-time tuning, which times its alternatives
 // during the run rather than guessing from the machine's load).
 #include <cstdint>
-#include <vector>
 
 namespace rcdem {
 
