@@ -44,7 +44,7 @@ checks = Checklist()
 check = checks.check
 # What depends on the machine's load: wall times, and the thread counts a run followed (--threads
 # auto changes the count with the free cores; the results do not change).
-WALL_CLOCK = {"seconds", "loop_seconds", "steps_per_second", "threads"}
+WALL_CLOCK = {"seconds", "loop_seconds", "steps_per_second", "step_seconds", "threads"}
 CKPT = re.compile(r"^checkpoint_(\d{12})\.rcp$")
 seed = int(os.environ.get("RCDEM_TEST_SEED", random.randrange(1 << 30)))
 rng = random.Random(seed)

@@ -155,6 +155,7 @@ double StepThreads::now() {
 void StepThreads::after_step(double seconds) {
   ++steps_;
   thread_steps_ += tuner_.threads();
+  step_seconds_ += seconds;
   if (!tuned_) return;
   const int before = tuner_.threads();
   tuner_.after_step(seconds);
@@ -168,6 +169,7 @@ ThreadRecord StepThreads::record() const {
   r.last = tuner_.chosen();
   r.mean = steps_ > 0 ? thread_steps_ / static_cast<double>(steps_) : tuner_.threads();
   r.changes = tuner_.changes();
+  r.step_seconds = step_seconds_;
   return r;
 }
 

@@ -64,6 +64,7 @@ struct ThreadRecord {
   int max = 1, last = 1;
   double mean = 1.0;  // over the steps
   std::int64_t changes = 0;
+  double step_seconds = 0.0;  // wall time inside the steps
 };
 
 // The tuner applied to the OpenMP runtime around each step. `fixed` > 0 runs exactly that many
@@ -95,7 +96,7 @@ class StepThreads {
   bool tuned_;
   ThreadCountTuner tuner_;
   std::int64_t steps_ = 0;
-  double thread_steps_ = 0.0;
+  double thread_steps_ = 0.0, step_seconds_ = 0.0;
 };
 
 // The runtime's thread count (1 without OpenMP), and setting it for the next parallel loops.

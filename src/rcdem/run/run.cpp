@@ -578,6 +578,7 @@ nlohmann::ordered_json RunLoop::summary_json(const RunSummary& r, double wall, d
   j["steps_per_second"] = loop_s > 0.0 ? static_cast<double>(r.steps) / loop_s : 0.0;
   j["seconds"] = wall;
   const ThreadRecord t = threads_.record();
+  j["step_seconds"] = t.step_seconds;
   j["threads"] = {{"tuned", t.tuned}, {"max", t.max}, {"last", t.last}, {"mean", t.mean},
                   {"changes", t.changes}};
   j["rcdem"] = {{"version", build_version()},
