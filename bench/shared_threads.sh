@@ -58,37 +58,34 @@ TENSION=examples/uniaxial/tension.toml
 OMP_NUM_THREADS=$NP "$BENCH" "$TENSION" 1 "$CRACK_AT" 1 --save-checkpoint "$WORK/crack" >/dev/null
 CRACKED=$(ls "$WORK"/crack/checkpoint_*.rcp | tail -1)
 
-say "## the step over many steps: auto against the free cores (the best fixed count)"
 LOADS="0 1"
 ((NP > 2)) && LOADS+=" 2"
-for r in $(seq 1 "$ROUNDS"); do
-  for busy in $LOADS; do
-    busy_start "$busy"
-    free=$((NP - busy > 1 ? NP - busy : 1))
-    for spec in "cube $CUBE $LONG_CUBE 50" "cracked $TENSION $LONG_CRACK 0 --checkpoint $CRACKED"; do
-      read -r -a a <<< "$spec"
-      OMP_NUM_THREADS=$NP "$BENCH" "${a[1]}" "${a[2]}" "${a[3]}" 1 "${a[@]:4}" --threads "auto,$free" \
-          2>&1 | grep -v '^# bytes' | sed "s/^/round=$r run=long busy_processes=$busy state=${a[0]} /" |
-        tee -a "$LOG"
+# Per round and load, both states at the counts given: `free` is auto against the free cores.
+time_loads() {  # RUN_NAME STEPS_CUBE STEPS_CRACK COUNTS
+  local list
+  for r in $(seq 1 "$ROUNDS"); do
+    for busy in $LOADS; do
+      busy_start "$busy"
+      list=$4
+      [[ $list == free ]] && list="auto,$((NP - busy > 1 ? NP - busy : 1))"
+      for spec in "cube $CUBE $2 50" "cracked $TENSION $3 0 --checkpoint $CRACKED"; do
+        read -r -a a <<< "$spec"
+        OMP_NUM_THREADS=$NP "$BENCH" "${a[1]}" "${a[2]}" "${a[3]}" 1 "${a[@]:4}" --threads "$list" \
+            2>&1 | grep -v '^# bytes' |
+          sed "s/^/round=$r run=$1 busy_processes=$busy state=${a[0]} /" | tee -a "$LOG"
+      done
+      busy_stop
     done
-    busy_stop
   done
-done
+}
 
-say "## the step over a few steps: every core and fewer, fixed (and auto finding its count)"
-for r in $(seq 1 "$ROUNDS"); do
-  [[ "${SKIP_SHORT:-0}" == 1 ]] && break
-  for busy in $LOADS; do
-    busy_start "$busy"
-    for spec in "cube $CUBE $STEPS_CUBE 50" "cracked $TENSION $STEPS_CRACK 0 --checkpoint $CRACKED"; do
-      read -r -a a <<< "$spec"
-      OMP_NUM_THREADS=$NP "$BENCH" "${a[1]}" "${a[2]}" "${a[3]}" 1 "${a[@]:4}" --threads "$COUNTS" \
-          2>&1 | grep -v '^# bytes' | sed "s/^/round=$r run=short busy_processes=$busy state=${a[0]} /" |
-        tee -a "$LOG"
-    done
-    busy_stop
-  done
-done
+say "## the step over many steps: auto against the free cores (the best fixed count)"
+time_loads long "$LONG_CUBE" "$LONG_CRACK" free
+
+if [[ "${SKIP_SHORT:-0}" != 1 ]]; then
+  say "## the step over a few steps: every core and fewer, fixed (and auto finding its count)"
+  time_loads short "$STEPS_CUBE" "$STEPS_CRACK" "$COUNTS"
+fi
 
 say "## rcdem run: a neighbour comes ${RUN_BUSY_AT} s into the run and leaves ${RUN_BUSY_FOR} s later"
 for threads in auto "$NP"; do

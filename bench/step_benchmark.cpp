@@ -47,7 +47,6 @@
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
 #include "rcdem/run/checkpoint.hpp"
-#include "rcdem/run/run_manifest.hpp"
 #include "rcdem/solver/simulation.hpp"
 #include "rcdem/specimens/specimen.hpp"
 
@@ -215,14 +214,11 @@ std::vector<int> parse_threads(const std::string& text) {
   std::size_t at = 0;
   while (at <= text.size()) {
     const std::size_t comma = std::min(text.find(',', at), text.size());
-    if (text.substr(at, comma - at) == "auto") {
-      out.push_back(0);
-    } else {
-      std::size_t used = 0;
-      const int t = std::stoi(text.substr(at, comma - at), &used);
-      if (used != comma - at || t <= 0) throw std::invalid_argument(text);
-      out.push_back(t);
-    }
+    const std::string item = text.substr(at, comma - at);
+    std::size_t used = 0;
+    const int t = item == "auto" ? 0 : std::stoi(item, &used);
+    if (item != "auto" && (used != item.size() || t <= 0)) throw std::invalid_argument(text);
+    out.push_back(t);
     at = comma + 1;
   }
   return out;

@@ -58,7 +58,8 @@ class ThreadCountTuner {
   std::int64_t changes_ = 0;
 };
 
-// What a run reports of its thread counts (summary.json's "threads").
+// What a run reports of its thread counts (summary.json's "threads") and of the time its steps
+// took (its "step_seconds", which the timing for the tuner gives for nothing).
 struct ThreadRecord {
   bool tuned = false;
   int max = 1, last = 1;
