@@ -199,10 +199,21 @@ int run(const fs::path& scenario_path, fs::path out, bool force, const fs::path&
   return r.stop_reason == "interrupted" ? 128 + r.signal : 0;
 }
 
-int calibrate(const fs::path& scenario_path, fs::path out, bool force, double size,
-              double rate_factor, const std::vector<std::string>& sets, const std::string& target,
+// The cube's side: --size, else the base scenario's specimen when it is a cube (a file written
+// for a resolution names its cube), else the paper's 160 mm.
+double calibration_cube_side(const rcdem::Scenario& base, std::optional<double> size) {
+  if (size) return *size;
+  const auto& s = base.specimen;
+  const bool cube = s.shape == "box" && s.size.x() > 0.0 && s.size.x() == s.size.y() &&
+                    s.size.y() == s.size.z();
+  return cube ? s.size.x() : 0.160;
+}
+
+int calibrate(const fs::path& scenario_path, fs::path out, bool force,
+              std::optional<double> size_option, double rate_factor, const std::vector<std::string>& sets, const std::string& target,
               double tolerance, int iterations, bool peak_only, const std::string& lever) {
   rcdem::Scenario base = rcdem::config::load_scenario_on_seed(scenario_path, std::nullopt, sets);
+  const double size = calibration_cube_side(base, size_option);
   rcdem::CalibrationOptions opt;
   opt.uniaxial.size = size;
   opt.uniaxial.rate_factor = rate_factor;
@@ -355,7 +366,8 @@ int main(int argc, char** argv) {
       ->type_name("auto|N")
       ->capture_default_str();
 
-  double size = 0.160, rate_factor = 1.0, tolerance = 0.05;
+  std::optional<double> size;
+  double rate_factor = 1.0, tolerance = 0.05;
   int iterations = 8;
   std::string target;
   auto* cal = app.add_subcommand(
@@ -366,7 +378,8 @@ int main(int argc, char** argv) {
       ->required();
   cal->add_option("-o,--output", out, "Output directory (default results/calibrate_<name>)");
   cal->add_flag("--force", force, "Overwrite the results in a non-empty output directory");
-  cal->add_option("--size", size, "Cube side [m]")->check(CLI::PositiveNumber);
+  cal->add_option("--size", size,
+                  "Cube side [m] (default: the scenario's specimen if it is a cube, else 0.16)")->check(CLI::PositiveNumber);
   cal->add_option("--rate-factor", rate_factor, "Multiply the loading rates (quasi-static checks)")
       ->check(CLI::PositiveNumber);
   cal->add_option("--set", sets, set_help)->type_name("KEY=VALUE");

@@ -40,4 +40,17 @@ with tempfile.TemporaryDirectory() as tmp:
                        capture_output=True, text=True, timeout=120)
     check(r.returncode == 0, f"a scenario including the fragment is accepted ({r.stderr.strip()})")
 
+    # Without --size the cube is the scenario's own when its specimen is a cube.
+    cube50 = os.path.join(tmp, "cube50.toml")
+    text = open(os.path.join(source, "examples/uniaxial/cube160.toml")).read()
+    with open(cube50, "w") as f:
+        f.write(text.replace("size = [0.160, 0.160, 0.160]", "size = [0.05, 0.05, 0.05]"))
+    out50 = os.path.join(tmp, "cal50")
+    r = subprocess.run([rcdem, "-q", "calibrate", cube50, "--peak-only", "--rate-factor", "4",
+                        "-o", out50], capture_output=True, text=True, timeout=900)
+    j50 = json.load(open(os.path.join(out50, "calibration.json"))) if r.returncode == 0 else {}
+    check(all(j50.get(k) == j[k] for k in ("E", "nu", "sigma_c", "sigma_t")),
+          "calibrate without --size on a 50 mm cube's scenario tests that cube (the same bits as "
+          f"--size 0.05: {j50.get('sigma_t')} against {j['sigma_t']})")
+
 checks.finish()

@@ -17,8 +17,10 @@ enum class UniaxialMode { Compression, Tension };
 struct UniaxialOptions {
   Real size = 0.160;             // cube side [m]
   Real rate_factor = 1.0;        // multiplies the loading rates below (quasi-static checks)
-  Real compression_rate = 1.25;  // axial strain rate [1/s]
-  Real tension_rate = 0.125;     // [1/s]
+  // Axial strain rates [1/s] on cubes up to the paper's 160 mm; above it they fall as 160 mm /
+  // side (uniaxial_scenario).
+  Real compression_rate = 1.25;
+  Real tension_rate = 0.125;
   std::int64_t snapshots = 4;
   // Stop once the load has fallen below this fraction of the peak; 0 = the full post-peak curve
   // (60% in compression, 30% in tension). A search needs only the peak, E and nu.
