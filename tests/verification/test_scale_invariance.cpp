@@ -72,10 +72,10 @@ TEST(ScaleInvariance, CoarserParticlesInALargerCubeWithScaledFractureEnergiesRea
   EXPECT_LT(c.strength / a.strength, 0.9);
   std::printf("strength, E, strain at the peak scaled / paper - 1: %.2e %.2e %.2e\n",
               b.strength / a.strength - 1, b.E / a.E - 1, b.strain_at_peak / a.strain_at_peak - 1);
-  std::printf("tension, %.0f mm cube: %.4f MPa; %.0f mm cube, particles x%.0f: %.4f MPa with the "
-              "fracture energies x%.0f, %.4f MPa without\n",
-              side * 1e3, a.strength / 1e6, k * side * 1e3, k, b.strength / 1e6, k,
-              c.strength / 1e6);
+  std::printf(
+      "tension, %.0f mm cube: %.4f MPa; %.0f mm cube, particles x%.0f: %.4f MPa with the "
+      "fracture energies x%.0f, %.4f MPa without\n",
+      side * 1e3, a.strength / 1e6, k * side * 1e3, k, b.strength / 1e6, k, c.strength / 1e6);
 }
 
 // The calibration slows the loading of cubes above the paper's 160 mm as their side grows, so a
