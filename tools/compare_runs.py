@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """Compares runs with a reference run of the same test (issue 26's quasi-static evidence, SPEC 6):
-peak load, deflection at peak, the load at fixed deflections (linear interpolation in the
+peak load, deflection at peak, the supports' reactions' peak (SPEC 6's test applies to both) and the
+plate's peak over it, the load at fixed deflections (linear interpolation in the
 history; the first crossing), steps, time step, wall time and energy balance.
 
   tools/compare_runs.py REFERENCE_DIR RUN_DIR [RUN_DIR ...] [--at 0.1,0.2,0.5,1,1.5,2] [--markdown]
@@ -41,7 +42,9 @@ def main():
     a = ap.parse_args()
     at = [float(x) * 1e-3 for x in a.at.split(",")]
     ref, rdefl, rload = load_run(a.reference)
-    cols = ["run", "steps", "time step [s]", "wall [s]", "peak [kN]", "δ at peak [mm]"]
+    ref_reactions = sr.reactions(a.reference)
+    cols = ["run", "steps", "time step [s]", "wall [s]", "peak [kN]", "δ at peak [mm]",
+            "supports' peak [kN]", "peak ÷ supports'"]
     cols += [f"{x * 1e3:g} mm [kN]" for x in at] + ["energy balance"]
     lines = []
     for d in [a.reference] + a.runs:
@@ -53,6 +56,11 @@ def main():
         cells.append(f"{s['peak_load_N'] / 1e3:.2f}{rel(s['peak_load_N'], ref['peak_load_N'])}")
         cells.append(f"{abs(s['displacement_at_peak_m']) * 1e3:.3f}"
                      f"{rel(abs(s['displacement_at_peak_m']), abs(ref['displacement_at_peak_m']))}")
+        rs, ref_rs = sr.reactions(str(d)), ref_reactions
+        peak_rs = None if rs is None else float(max(rs))
+        cells.append("" if peak_rs is None else
+                     f"{peak_rs / 1e3:.2f}{rel(peak_rs, None if ref_rs is None else float(max(ref_rs)))}")
+        cells.append("" if peak_rs is None else f"{s['peak_load_N'] / peak_rs:.3f}")
         for x in at:
             v, r = load_at(defl, load, x), load_at(rdefl, rload, x)
             cells.append("" if v is None else f"{v / 1e3:.2f}{rel(v, r)}")

@@ -28,8 +28,10 @@ MODELS = {  # name: (bars, diameter [m], f_y [Pa], P_exp [N]) from Table 3
 # Full size at the rates that passed SPEC 6's half-rate check (issue 26, docs/case-study.md,
 # "Quasi-static rates"): 0.025 m/s (AN2 NL-B: 0.025 vs 0.0125 m/s moved its peak 0.3%); AN4 at
 # 0.0125 m/s, the slowest measured (0.025 vs 0.0125 m/s moved its load at 2 mm by 12%).
-FULL = dict(velocity=-0.025, by_model={"AN4": -0.0125}, ramp=4.0e-3, stop=0.002, post_peak=0.001, snapshots=10, coarsen=None, sub="")
-QUICK = dict(velocity=-0.1, ramp=4.0e-3, stop=0.0012, post_peak=None, snapshots=4, coarsen=2.0, sub="quick")
+FULL = dict(velocity=-0.025, by_model={"AN4": -0.0125}, ramp=4.0e-3, stop=0.002, post_peak=0.001, snapshots=10, coarsen=None, sub="",
+            contact="calibrated_contact.toml")
+QUICK = dict(velocity=-0.1, ramp=4.0e-3, stop=0.0012, post_peak=None, snapshots=4, coarsen=2.0, sub="quick",
+             contact="calibrated_contact_quick.toml")
 D_AGG, D_MORTAR = (0.008, 0.012), (0.008, 0.009)  # diameters of the schema's defaults (SPEC 2)
 
 
@@ -47,7 +49,7 @@ def scenario(model, interface, mode):
     head = (f"# {model}{'' if n == 0 else ' ' + interface}: three-point bending of the paper's beam "
             f"(SPEC 10, Table 3: P_exp = {p_exp / 1e3:.1f} kN){' - quick variant' if mode['sub'] else ''}.\n"
             f"# Written by tools/make_tpb_scenarios.py; SI units.\n"
-            f'include = ["{up}../../calibrated_contact.toml"]\n\n'
+            f'include = ["{up}../../{mode["contact"]}"]\n\n'
             f"[specimen]\nshape = \"beam\"\nsize = [{L}, {B}, {H}]   # length x, width y, depth z [m]\n\n"
             f"[generation]\nseed = 1\n\n")
     if mode["coarsen"]:

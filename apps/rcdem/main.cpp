@@ -252,9 +252,13 @@ int study(const std::string& name, fs::path scenarios, fs::path out, bool force,
   o.scenarios = scenarios.empty() ? rcdem::builtin_study_scenarios(name, quick) : scenarios;
   if (!fs::is_directory(o.scenarios))
     rcdem::fail("--scenarios '{}': not a directory of scenarios", o.scenarios.string());
-  // The report: the paper's tables and figures where every case is a paper beam, else a table and
-  // figure of the cases as they are (tools/study_report.py decides).
-  if (name == "three_point_bending" || !scenarios.empty()) o.report_script = "study_report.py";
+  // The report: the size series' (its name, whatever its scenarios); else the paper's tables and
+  // figures where every case is a paper beam, or a table and figure of the cases as they are
+  // (tools/study_report.py decides).
+  if (name == "size_series")
+    o.report_script = "size_series_report.py";
+  else if (name == "three_point_bending" || !scenarios.empty())
+    o.report_script = "study_report.py";
   if (out.empty()) out = fs::path("results") / ("study_" + name + (quick ? "_quick" : ""));
   o.out = out;
   o.cases = cases;
@@ -404,7 +408,10 @@ int main(int argc, char** argv) {
   std::vector<std::string> cases;
   auto* stc = app.add_subcommand(
       "study", "Run a study's cases (resumable) and write its tables and figures");
-  stc->add_option("name", study_name, "Study: three_point_bending (paper 3, SPEC 10)")->required();
+  stc->add_option("name", study_name,
+                  "Study: three_point_bending (paper 3, SPEC 10) or size_series (depths 100, 200, "
+                  "400 mm; docs/size-series.md)")
+      ->required();
   stc->add_option("-o,--output", out, "Study directory (default results/study_<name>[_quick])");
   stc->add_flag("--quick", quick,
                 "Coarser particles and faster loading: the whole study in minutes (examples/<name>"

@@ -33,7 +33,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const char* const kBuiltinStudies[] = {"three_point_bending"};
+const char* const kBuiltinStudies[] = {"three_point_bending", "size_series"};
 
 volatile std::sig_atomic_t g_study_signal = 0;
 extern "C" void on_study_signal(int sig) { g_study_signal = sig; }
@@ -150,8 +150,8 @@ fs::path builtin_study_scenarios(const std::string& name, bool quick) {
   if (std::find(std::begin(kBuiltinStudies), std::end(kBuiltinStudies), name) ==
       std::end(kBuiltinStudies))
     fail(
-        "unknown study '{}': the built-in studies are: three_point_bending (or give a directory "
-        "of scenarios with --scenarios)",
+        "unknown study '{}': the built-in studies are: three_point_bending, size_series (or give "
+        "a directory of scenarios with --scenarios)",
         name);
   const fs::path rel = fs::path("examples") / name / "study" / (quick ? "quick" : "");
   const fs::path found = own_file(rel);
@@ -407,16 +407,22 @@ bool StudyRun::run_pending() {
   return g_study_signal == 0;
 }
 
-// The previous report's files (tools/study_report.py's outputs), before a new report is made.
+// The previous report's files (tools/study_report.py's or size_series_report.py's outputs),
+// before a new report is made.
 void remove_report(const fs::path& out) {
   std::error_code ec;
   fs::remove_all(out / "curves", ec);
   std::vector<fs::path> old;
   for (fs::directory_iterator it(out, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();
-    const bool figure = name.rfind("figure", 0) == 0 && it->path().extension() == ".png";
-    if (figure || name == "crack_height.png" || name == "table3.md" || name == "report.json" ||
-        name == "report.log" || name == "cases.md" || name == "load_displacement.png")
+    const bool png = it->path().extension() == ".png";
+    // tools/study_report.py's, then tools/size_series_report.py's.
+    const bool figure = png && (name.rfind("figure", 0) == 0 || name == "crack_height.png" ||
+                                name == "load_displacement.png" ||
+                                name.rfind("load_deflection_h", 0) == 0 ||
+                                name == "sigma_n_vs_h.png" || name == "rho_min_vs_h.png");
+    if (figure || name == "table3.md" || name == "report.json" || name == "report.log" ||
+        name == "cases.md" || name == "size_series.md" || name == "size_effect.json")
       old.push_back(it->path());
   }
   for (const auto& p : old) fs::remove(p, ec);
