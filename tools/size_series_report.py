@@ -134,7 +134,9 @@ def rho_min(cells, h):
     if found is None:
         return None
     run = cells[(h, found)][0]
-    return dict(rho_percent=found, rho_below_percent=below, f_y_Pa=run["f_y"], bars=run["bars"])
+    below_rho = 100 * cells[(h, below)][0]["rho"] if below else 0.0
+    return dict(rho_percent=100 * run["rho"], rho_below_percent=below_rho, f_y_Pa=run["f_y"],
+                bars=run["bars"])
 
 
 def cell_stats(rs):
@@ -238,19 +240,27 @@ def fit_lines(f, name):
     return lines
 
 
+def spread(e, scale, digits):
+    """mean ± sd (min–max), or the one value."""
+    if e["n"] == 1:
+        return f"{e['mean'] / scale:.{digits}f}"
+    return (f"{e['mean'] / scale:.{digits}f} ± {e['sd'] / scale:.{digits}f} "
+            f"({e['min'] / scale:.{digits}f}–{e['max'] / scale:.{digits}f})")
+
+
 def markdown(report):
     lines = ["# Size series", "",
-             "| h [mm] | ρ [%] | bars | packings | peak [kN] mean ± sd (range) | σN [MPa] mean ± sd | "
+             "| h [mm] | ρ [%] | bars | packings | peak [kN] mean ± sd (range) | σN [MPa] mean ± sd (range) | "
              "supports' peak [kN] | plate ÷ supports | classes |", "|---|---|---|---|---|---|---|---|---|"]
     for c in report["cells"]:
         pk, sn, rp = c["peak_N"], c["sigma_N_Pa"], c["reaction_peak_N"]
         ratio = c["plate_over_supports"]
         lines.append(
             f"| {c['h_m'] * 1e3:g} | {c['rho_percent']:.3f} | {c['bars']} | {len(c['seeds'])} | "
-            f"{pk['mean'] / 1e3:.2f} ± {pk['sd'] / 1e3:.2f} ({pk['min'] / 1e3:.2f}–{pk['max'] / 1e3:.2f}) | "
-            f"{sn['mean'] / 1e6:.3f} ± {sn['sd'] / 1e6:.3f} | "
+            f"{spread(pk, 1e3, 2)} | {spread(sn, 1e6, 3)} | "
             + (f"{rp['mean'] / 1e3:.2f}" if rp else "–") + " | "
-            + (f"{min(ratio):.3f}–{max(ratio):.3f}" + (" **(> 2%)**" if max(abs(x - 1) for x in ratio) > 0.02 else "")
+            + (f"{min(ratio):.3f}" + (f"–{max(ratio):.3f}" if max(ratio) > min(ratio) else "")
+               + (" **(> 2%)**" if max(abs(x - 1) for x in ratio) > 0.02 else "")
                if ratio else "–")
             + " | " + ", ".join(c["classes"]) + " |")
     lines += ["", "## Size effect of the plain beams (Bažant's type-1 law on σN)", ""]
@@ -259,7 +269,7 @@ def markdown(report):
     lines += ["", "## Minimum ductile ratio and brittleness number", ""]
     if gf:
         lines.append(f"G_F = damage energy of the plain beams / (b h) = {gf['mean']:.1f} J/m² "
-                     f"(range {gf['min']:.1f}–{gf['max']:.1f}); K_IC = √(E G_F) = "
+                     f"(range {gf['min']:.1f}–{gf['max']:.1f}, {gf['n']} runs); K_IC = √(E G_F) = "
                      f"{report['K_IC_Pa_sqrt_m'] / 1e6:.3f} MPa√m with E = 34.2 GPa.")
     lines += ["", "| h [mm] | ρ_min [%] | bars | largest brittle ratio below [%] | N_P = ρ f_y √h / K_IC |",
               "|---|---|---|---|---|"]
