@@ -609,6 +609,30 @@ def table3_lines(report, commit):
             f"| {model} | {pexp} | {fmt_kn(mine.get('EL'))} | {fmt_kn(mine.get('NL-A'))} "
             f"| {fmt_kn(mine.get('NL-B'))} | {'–' if err is None else f'{100 * err:+.1f}%'} "
             f"| {'–' if order is None else ('yes' if order else 'NO')} |")
+    return lines + imbalance_lines(report)
+
+
+# SPEC 6's quasi-static test applies to the plate's force and to the supports' reactions: where
+# their peaks differ by more than this the study says so.
+PLATE_SUPPORT_TOLERANCE = 0.02
+
+
+def imbalance_lines(report):
+    """The runs whose plate peak and supports' peak differ by more than PLATE_SUPPORT_TOLERANCE
+    (recorded in report["plate_support_imbalance"])."""
+    off = {k: c["peak_load_N"] / c["reaction_peak_N"] - 1 for k, c in sorted(report["cases"].items())
+           if c.get("reaction_peak_N")}
+    report["plate_support_imbalance"] = off
+    bad = {k: v for k, v in off.items() if abs(v) > PLATE_SUPPORT_TOLERANCE}
+    worst = max(off.items(), key=lambda kv: abs(kv[1]), default=None)
+    lines = [""]
+    if not bad:
+        lines.append(f"Every run's plate peak is within {100 * PLATE_SUPPORT_TOLERANCE:.0f}% of its "
+                     "supports' peak" + (f" (largest: {worst[0]}, {100 * worst[1]:+.1f}%)." if worst else "."))
+    else:
+        lines.append(f"**Plate and supports differ by more than {100 * PLATE_SUPPORT_TOLERANCE:.0f}% "
+                     "at the peak** (not quasi-static there; plate peak ÷ supports' peak − 1): "
+                     + ", ".join(f"{k} {100 * v:+.1f}%" for k, v in bad.items()) + ".")
     return lines
 
 
