@@ -44,8 +44,10 @@ def write(path, header, body):
 
 
 quick = open(os.path.join(ROOT, "study/quick/AN4_NL-B.toml")).read()
-quick = replace_once(quick, 'include = ["../../../calibrated_contact.toml"]',
-                     'include = ["../../calibrated_contact.toml"]')
+# The committed sweep (docs/case-study.md, "Bond sweep") was written before the quick resolution
+# had its own contact set and rate (2026-11-27); rerunning this writes the sweep on today's.
+quick = replace_once(quick, 'include = ["../../../calibrated_contact_quick.toml"]',
+                     'include = ["../../calibrated_contact_quick.toml"]')
 quick = replace_once(quick, "displacement = 0.0012   # m of midspan deflection",
                      "displacement = 0.002   # m of midspan deflection")
 source = ('# Written from ../study/quick/AN4_NL-B.toml, stop at 2 mm; SI units. '

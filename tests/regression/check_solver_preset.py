@@ -24,10 +24,12 @@ rcdem, source = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
 checks = Checklist()
 check = checks.check
 STUDY = os.path.join(source, "examples/three_point_bending/study/quick/AN2_NL-B.toml")
-# The include made absolute, so that the copies run from a temporary directory.
-TEXT = open(STUDY).read().replace(
-    '"../../../calibrated_contact.toml"',
-    '"' + os.path.join(source, "examples/calibrated_contact.toml") + '"')
+# The include made absolute, so that the copies run from a temporary directory; without the
+# quick study's selective mass scaling, its own choice for its thin bars (docs/case-study.md),
+# which the preset leaves off.
+TEXT = re.sub(r"\nadded_mass_limit = [^\n]*", "", open(STUDY).read()).replace(
+    '"../../../calibrated_contact_quick.toml"',
+    '"' + os.path.join(source, "examples/calibrated_contact_quick.toml") + '"')
 
 
 def without_solver(text):

@@ -41,8 +41,8 @@ with tempfile.TemporaryDirectory() as tmp:
     scenarios = os.path.join(tmp, "scenarios")
     os.makedirs(scenarios)
     text = open(os.path.join(source, "examples/three_point_bending/study/quick/AN0.toml")).read()
-    text = text.replace('"../../../calibrated_contact.toml"',
-                        json.dumps(os.path.join(source, "examples/calibrated_contact.toml")))
+    text = text.replace('"../../../calibrated_contact_quick.toml"',
+                        json.dumps(os.path.join(source, "examples/calibrated_contact_quick.toml")))
     scenario = os.path.join(scenarios, "AN0.toml")
     open(scenario, "w").write(text)
     out = os.path.join(tmp, "study")
