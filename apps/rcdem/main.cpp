@@ -16,7 +16,6 @@
 #include <optional>
 #include <thread>
 
-#include "rcdem/core/thread_waiting.hpp"
 #include "rcdem/calibration/calibrate.hpp"
 #include "rcdem/config/scenario.hpp"
 #include "rcdem/config/scenario_overrides.hpp"
@@ -25,6 +24,7 @@
 #include "rcdem/core/child_process.hpp"
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/progress.hpp"
+#include "rcdem/core/thread_waiting.hpp"
 #include "rcdem/io/atomic_file.hpp"
 #include "rcdem/io/specimen_output.hpp"
 #include "rcdem/run/run.hpp"
@@ -204,14 +204,15 @@ int run(const fs::path& scenario_path, fs::path out, bool force, const fs::path&
 double calibration_cube_side(const rcdem::Scenario& base, std::optional<double> size) {
   if (size) return *size;
   const auto& s = base.specimen;
-  const bool cube = s.shape == "box" && s.size.x() > 0.0 && s.size.x() == s.size.y() &&
-                    s.size.y() == s.size.z();
+  const bool cube =
+      s.shape == "box" && s.size.x() > 0.0 && s.size.x() == s.size.y() && s.size.y() == s.size.z();
   return cube ? s.size.x() : 0.160;
 }
 
 int calibrate(const fs::path& scenario_path, fs::path out, bool force,
-              std::optional<double> size_option, double rate_factor, const std::vector<std::string>& sets, const std::string& target,
-              double tolerance, int iterations, bool peak_only, const std::string& lever) {
+              std::optional<double> size_option, double rate_factor,
+              const std::vector<std::string>& sets, const std::string& target, double tolerance,
+              int iterations, bool peak_only, const std::string& lever) {
   rcdem::Scenario base = rcdem::config::load_scenario_on_seed(scenario_path, std::nullopt, sets);
   const double size = calibration_cube_side(base, size_option);
   rcdem::CalibrationOptions opt;
@@ -383,7 +384,8 @@ int main(int argc, char** argv) {
   cal->add_option("-o,--output", out, "Output directory (default results/calibrate_<name>)");
   cal->add_flag("--force", force, "Overwrite the results in a non-empty output directory");
   cal->add_option("--size", size,
-                  "Cube side [m] (default: the scenario's specimen if it is a cube, else 0.16)")->check(CLI::PositiveNumber);
+                  "Cube side [m] (default: the scenario's specimen if it is a cube, else 0.16)")
+      ->check(CLI::PositiveNumber);
   cal->add_option("--rate-factor", rate_factor, "Multiply the loading rates (quasi-static checks)")
       ->check(CLI::PositiveNumber);
   cal->add_option("--set", sets, set_help)->type_name("KEY=VALUE");
@@ -444,8 +446,8 @@ int main(int argc, char** argv) {
     std::string names;
     for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
       names += (names.empty() ? "" : ", ") + sub->get_name();
-    std::cerr << "rcdem: error: unknown command '" << one_line(unknown) << "' (the commands are: "
-              << names << "; rcdem --help says more)\n";
+    std::cerr << "rcdem: error: unknown command '" << one_line(unknown)
+              << "' (the commands are: " << names << "; rcdem --help says more)\n";
     return 2;
   }
   try {
@@ -468,8 +470,7 @@ int main(int argc, char** argv) {
       return calibrate(scenario, out, force, size, rate_factor, sets, target, tolerance, iterations,
                        peak_only, tension_lever);
     if (*stc)
-      return study(study_name, study_scenarios, out, force, quick, cases, seeds, sets, sweep,
-                   jobs);
+      return study(study_name, study_scenarios, out, force, quick, cases, seeds, sets, sweep, jobs);
     if (*schema) {
       rcdem::config::scenario_schema().print_template(std::cout);
       return 0;

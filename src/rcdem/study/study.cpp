@@ -92,20 +92,23 @@ void write_tables(const fs::path& out, const std::vector<CaseRecord>& cases,
   study["sweep"] = o.sweep;
   study["cases"] = nlohmann::json::array();
   for (const auto& c : cases) {
-    nlohmann::json jc = {{"case", c.name},        {"seed", c.seed},      {"directory", c.dir},
-                         {"variant", c.variant},  {"status", c.status}};
+    nlohmann::json jc = {{"case", c.name},
+                         {"seed", c.seed},
+                         {"directory", c.dir},
+                         {"variant", c.variant},
+                         {"status", c.status}};
     if (!c.error.empty()) jc["error"] = c.error;
     if (c.status == "finished") {
       const auto& s = c.summary;
       peaks += fmt::format("{},{},{},{},{},{},{:.9g},{:.9g}\n", c.name, c.dir, c.variant, c.model,
                            c.interface, c.seed, s.value("peak_load_N", 0.0),
                            s.value("displacement_at_peak_m", 0.0));
-      table += fmt::format(
-          "{},{},{},{},{},{},{},{},{},{:.6g},{:.1f},{:.9g},{:.9g},{:.3g}\n", c.name, c.seed, c.dir,
-          c.variant, c.model, c.interface, c.status, s.value("stop_reason", ""),
-          s.value("steps", 0L),
-          s.value("time_step_s", 0.0), s.value("seconds", 0.0), s.value("peak_load_N", 0.0),
-          s.value("displacement_at_peak_m", 0.0), s["energy"].value("balance_error", 0.0));
+      table += fmt::format("{},{},{},{},{},{},{},{},{},{:.6g},{:.1f},{:.9g},{:.9g},{:.3g}\n",
+                           c.name, c.seed, c.dir, c.variant, c.model, c.interface, c.status,
+                           s.value("stop_reason", ""), s.value("steps", 0L),
+                           s.value("time_step_s", 0.0), s.value("seconds", 0.0),
+                           s.value("peak_load_N", 0.0), s.value("displacement_at_peak_m", 0.0),
+                           s["energy"].value("balance_error", 0.0));
       jc["wall_time_s"] = s.value("seconds", 0.0);
     } else {
       table += fmt::format("{},{},{},{},{},{},{},,,,,,,\n", c.name, c.seed, c.dir, c.variant,
@@ -181,8 +184,7 @@ std::vector<std::string> sweep_items(const StudyOptions& o) {
   if (o.sweep.empty()) return {""};
   const auto eq = o.sweep.find('=');
   if (eq == std::string::npos || eq == 0 || eq + 1 == o.sweep.size())
-    fail("--sweep '{}': expected KEY=V1,V2,... (e.g. contact.sigma_nt=3e6,4.23e6,5.5e6)",
-         o.sweep);
+    fail("--sweep '{}': expected KEY=V1,V2,... (e.g. contact.sigma_nt=3e6,4.23e6,5.5e6)", o.sweep);
   const std::string key = o.sweep.substr(0, eq);
   std::vector<std::string> items;
   std::set<std::string> distinct;
@@ -417,10 +419,10 @@ void remove_report(const fs::path& out) {
     const std::string name = it->path().filename().string();
     const bool png = it->path().extension() == ".png";
     // tools/study_report.py's, then tools/size_series_report.py's.
-    const bool figure = png && (name.rfind("figure", 0) == 0 || name == "crack_height.png" ||
-                                name == "load_displacement.png" ||
-                                name.rfind("load_deflection_h", 0) == 0 ||
-                                name == "sigma_n_vs_h.png" || name == "rho_min_vs_h.png");
+    const bool figure =
+        png && (name.rfind("figure", 0) == 0 || name == "crack_height.png" ||
+                name == "load_displacement.png" || name.rfind("load_deflection_h", 0) == 0 ||
+                name == "sigma_n_vs_h.png" || name == "rho_min_vs_h.png");
     if (figure || name == "table3.md" || name == "report.json" || name == "report.log" ||
         name == "cases.md" || name == "size_series.md" || name == "size_effect.json")
       old.push_back(it->path());
