@@ -19,15 +19,18 @@ Run from the repository root without arguments to rewrite the shipped scenarios.
 import argparse
 import math
 import os
+import sys
 
-B = 0.150                                 # beam width [m], every size
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import make_tpb_scenarios as tpb  # noqa: E402
+
+B = tpb.B                                 # beam width [m], every size
 DEPTHS = (0.100, 0.200, 0.400)            # h [m]
 RATIOS = (0.0, 0.08, 0.26, 0.67, 1.05)    # steel ratio A_s / (b h) [%]
 STANDARD_DIAMETERS_MM = (4, 5, 6, 8, 10, 12, 14, 16, 20, 25, 28, 32)
 MAX_BARS = 4
 # Table 3's bars: diameter [mm] -> f_y [Pa] (SPEC 10).
 TABLE3_FY = {4: 637e6, 5: 569e6, 8: 441e6, 10: 456e6}
-D_AGG, D_MORTAR = (0.008, 0.012), (0.008, 0.009)   # the paper's particles (SPEC 2) [m]
 
 # Loading, as the three-point bending study's at h = 100 mm, scaled with h where a length or a
 # period sets it: the deflection to stop at and the ramp (the first bending period grows as
@@ -78,11 +81,7 @@ def case_name(h, ratio):
 
 
 def plate(name, face, x_centre, width, velocity=None, ramp=None):
-    lines = [f"[plates.{name}]", f'face = "{face}"',
-             f"extent = [{x_centre - width / 2:.4f}, {x_centre + width / 2:.4f}, 0.0, {B}]   # x, y [m]"]
-    if velocity is not None:
-        lines += [f"velocity = {velocity}          # m/s, downwards", f"ramp_time = {ramp:g}       # s"]
-    return "\n".join(lines) + "\n"
+    return tpb.plate(name, face, x_centre, velocity, ramp, width=width, digits=4)
 
 
 def bars_text(h, ratio, length):
@@ -108,12 +107,7 @@ def scenario(h, ratio, mode, include):
             f'include = ["{include}"]\n\n'
             f"[specimen]\nshape = \"beam\"\nsize = [{length:g}, {B}, {h:g}]   # length x, width y, depth z [m]\n\n"
             f"[generation]\nseed = 1\n\n")
-    if mode["coarsen"]:
-        k = mode["coarsen"]
-        text += (f"# Quick: particles {k:g}x coarser than the paper's.\n"
-                 f"[generation.aggregate]\nd_min = {k * D_AGG[0]:g}\nd_max = {k * D_AGG[1]:g}\n\n"
-                 f"[generation.mortar]\nd_min = {k * D_MORTAR[0]:g}\nd_max = {k * D_MORTAR[1]:g}\n\n")
-    text += bars
+    text += tpb.coarse_particles(mode["coarsen"]) + bars
     x0 = (length - span) / 2
     text += (plate("support_left", "z-", x0, 0.2 * h) + "\n"
              + plate("support_right", "z-", length - x0, 0.2 * h) + "\n"

@@ -40,12 +40,23 @@ QUICK = dict(velocity=-0.0125, ramp=4.0e-3, stop=0.0012, post_peak=None, snapsho
 D_AGG, D_MORTAR = (0.008, 0.012), (0.008, 0.009)  # diameters of the schema's defaults (SPEC 2)
 
 
-def plate(name, face, x_centre, velocity=None, ramp=None):
+def plate(name, face, x_centre, velocity=None, ramp=None, width=PLATE, digits=3):
+    """A plate's section: across the beam's width, `width` long along x (also
+    tools/make_size_series.py's)."""
     lines = [f"[plates.{name}]", f'face = "{face}"',
-             f"extent = [{x_centre - PLATE / 2:.3f}, {x_centre + PLATE / 2:.3f}, 0.0, {B}]   # x, y [m]"]
+             f"extent = [{x_centre - width / 2:.{digits}f}, {x_centre + width / 2:.{digits}f}, 0.0, {B}]   # x, y [m]"]
     if velocity is not None:
         lines += [f"velocity = {velocity}          # m/s, downwards", f"ramp_time = {ramp:g}       # s"]
     return "\n".join(lines) + "\n"
+
+
+def coarse_particles(k):
+    """The generation's diameters k times the paper's ("" for None; also make_size_series.py's)."""
+    if not k:
+        return ""
+    return (f"# Quick: particles {k:g}x coarser than the paper's.\n"
+            f"[generation.aggregate]\nd_min = {k * D_AGG[0]:g}\nd_max = {k * D_AGG[1]:g}\n\n"
+            f"[generation.mortar]\nd_min = {k * D_MORTAR[0]:g}\nd_max = {k * D_MORTAR[1]:g}\n\n")
 
 
 def scenario(model, interface, mode):
@@ -57,11 +68,7 @@ def scenario(model, interface, mode):
             f'include = ["{up}../../{mode["contact"]}"]\n\n'
             f"[specimen]\nshape = \"beam\"\nsize = [{L}, {B}, {H}]   # length x, width y, depth z [m]\n\n"
             f"[generation]\nseed = 1\n\n")
-    if mode["coarsen"]:
-        k = mode["coarsen"]
-        head += (f"# Quick: particles {k:g}x coarser than the paper's.\n"
-                 f"[generation.aggregate]\nd_min = {k * D_AGG[0]:g}\nd_max = {k * D_AGG[1]:g}\n\n"
-                 f"[generation.mortar]\nd_min = {k * D_MORTAR[0]:g}\nd_max = {k * D_MORTAR[1]:g}\n\n")
+    head += coarse_particles(mode["coarsen"])
     bars = ""
     ys = [B / 2] if n == 1 else [B / 4, 3 * B / 4] if n == 2 else []
     for k, y in enumerate(ys):
@@ -89,12 +96,17 @@ def scenario(model, interface, mode):
     return head + bars + plates + tail
 
 
-for mode in (FULL, QUICK):
-    out = os.path.join("examples", "three_point_bending", "study", mode["sub"])
-    os.makedirs(out, exist_ok=True)
-    for model in MODELS:
-        for interface in (["EL"] if model == "AN0" else ["EL", "NL-A", "NL-B"]):
-            name = model if model == "AN0" else f"{model}_{interface}"
-            with open(os.path.join(out, f"{name}.toml"), "w") as f:
-                f.write(scenario(model, interface, mode))
-            print(os.path.join(out, f"{name}.toml"))
+def main():
+    for mode in (FULL, QUICK):
+        out = os.path.join("examples", "three_point_bending", "study", mode["sub"])
+        os.makedirs(out, exist_ok=True)
+        for model in MODELS:
+            for interface in (["EL"] if model == "AN0" else ["EL", "NL-A", "NL-B"]):
+                name = model if model == "AN0" else f"{model}_{interface}"
+                with open(os.path.join(out, f"{name}.toml"), "w") as f:
+                    f.write(scenario(model, interface, mode))
+                print(os.path.join(out, f"{name}.toml"))
+
+
+if __name__ == "__main__":
+    main()

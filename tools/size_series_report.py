@@ -170,6 +170,16 @@ def analyse(runs):
     return report, cells
 
 
+def finish(fig, ax, xlabel, ylabel, path):
+    """Labels, a legend, and the figure written to path."""
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
 def plot_sigma_n(report, cells, out):
     fig, ax = plt.subplots(figsize=(5.5, 4.2))
     plain = [(k[0], r["sigma_n"]) for k, v in cells.items() if k[1] == 0 for r in v]
@@ -185,12 +195,8 @@ def plot_sigma_n(report, cells, out):
     ax.axhline(SIGMA_T / 1e6, color="grey", lw=0.8, ls=":", label="σt of Table 1")
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel("depth h [mm]")
-    ax.set_ylabel("nominal strength σN = 3PL/(2bh²) [MPa]")
-    ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "sigma_n_vs_h.png"), dpi=120)
-    plt.close(fig)
+    finish(fig, ax, "depth h [mm]", "nominal strength σN = 3PL/(2bh²) [MPa]",
+           os.path.join(out, "sigma_n_vs_h.png"))
 
 
 def plot_curves(report, cells, out):
@@ -201,13 +207,9 @@ def plot_curves(report, cells, out):
             for j, r in enumerate(rs):
                 ax.plot(r["d"] * 1e3, r["p"] / 1e3, color=colours[i % len(colours)], lw=0.9,
                         label=f"ρ = {k[1]:.2f}% ({r['bars']})" if j == 0 else None)
-        ax.set_xlabel("midspan deflection [mm]")
-        ax.set_ylabel("load [kN]")
         ax.set_title(f"h = {h * 1e3:g} mm")
-        ax.legend(fontsize=7)
-        fig.tight_layout()
-        fig.savefig(os.path.join(out, f"load_deflection_h{h * 1e3:g}.png"), dpi=120)
-        plt.close(fig)
+        finish(fig, ax, "midspan deflection [mm]", "load [kN]",
+               os.path.join(out, f"load_deflection_h{h * 1e3:g}.png"))
 
 
 def plot_rho_min(report, out):
@@ -222,12 +224,8 @@ def plot_rho_min(report, out):
         hh = np.geomspace(h.min(), h.max(), 50)
         ax.plot(hh * 1e3, hi[0] * np.sqrt(h[0] / hh), ":", color="grey", label="∝ h^-½ (N_P constant)")
     ax.set_xscale("log")
-    ax.set_xlabel("depth h [mm]")
-    ax.set_ylabel("minimum ductile steel ratio [%]")
-    ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "rho_min_vs_h.png"), dpi=120)
-    plt.close(fig)
+    finish(fig, ax, "depth h [mm]", "minimum ductile steel ratio [%]",
+           os.path.join(out, "rho_min_vs_h.png"))
 
 
 def fit_lines(f, name):
