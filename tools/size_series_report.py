@@ -25,6 +25,7 @@ import sys
 import tomllib
 
 import matplotlib
+import matplotlib.ticker
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
@@ -105,7 +106,12 @@ def fit_size_effect(hs, sigmas, r_fixed=None):
         return None
     r = r_fixed if r_fixed is not None else float(res.x[2])
     fitted = sel(hs, res.x[0], res.x[1], r)
+    # A parameter on its bound is not identified by these sizes (the law's curvature needs a wider
+    # range of h than the scatter allows).
+    at_bound = [name for name, v, a, b in zip(("f_r_inf", "D_b", "r"), res.x, lo, hi)
+                if not a * (1 + 1e-3) < v < b * (1 - 1e-3)]
     return dict(f_r_inf_Pa=float(res.x[0]), D_b_m=float(res.x[1]), r=r, r_free=r_fixed is None,
+                at_bound=at_bound,
                 rms_log_residual=float(np.sqrt(np.mean(res.fun ** 2))),
                 residuals=[dict(h_m=float(h), sigma_N_Pa=float(s), fit_Pa=float(f),
                                 relative=float(s / f - 1)) for h, s, f in zip(hs, sigmas, fitted)])
@@ -174,7 +180,8 @@ def finish(fig, ax, xlabel, ylabel, path):
     """Labels, a legend, and the figure written to path."""
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
-    ax.legend(fontsize=7)
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
@@ -195,6 +202,11 @@ def plot_sigma_n(report, cells, out):
     ax.axhline(SIGMA_T / 1e6, color="grey", lw=0.8, ls=":", label="σt of Table 1")
     ax.set_xscale("log")
     ax.set_yscale("log")
+    ax.set_xticks([50, 100, 200, 400, 1000])
+    ax.xaxis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
+    ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+    ax.yaxis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
+    ax.yaxis.set_minor_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
     finish(fig, ax, "depth h [mm]", "nominal strength σN = 3PL/(2bh²) [MPa]",
            os.path.join(out, "sigma_n_vs_h.png"))
 
@@ -233,7 +245,10 @@ def fit_lines(f, name):
         return [f"- {name}: not enough plain beams to fit."]
     lines = [f"- {name}: f_r∞ = {f['f_r_inf_Pa'] / 1e6:.3f} MPa ({f['f_r_inf_Pa'] / SIGMA_T:.2f} σt), "
              f"D_b = {f['D_b_m'] * 1e3:.1f} mm, r = {f['r']:.2f}; rms of log residuals "
-             f"{f['rms_log_residual']:.4f}; residuals (σN / fit − 1): "
+             f"{f['rms_log_residual']:.4f}"
+             + (f"; **{', '.join(f['at_bound'])} at the fit's bound: not identified by these data**"
+                if f.get("at_bound") else "")
+             + "; residuals (σN / fit − 1): "
              + ", ".join(f"h {x['h_m'] * 1e3:g}: {100 * x['relative']:+.1f}%" for x in f["residuals"])]
     return lines
 
