@@ -5,7 +5,7 @@
 # specimen is generated with its VGCM-3D contact network.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/setup.sh
+bash scripts/setup.sh rcdem   # the program alone: the tests, benchmarks and Python module are test.sh's
 ./build/rcdem study three_point_bending --quick --cases AN0 -o results/quick_study
 ./build/rcdem generate examples/three_point_bending/AN0.toml -o results/AN0 --force
 echo "Study: results/quick_study/table3.md and figure*.png (the whole quick study: rcdem study three_point_bending --quick)"

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages rcdem needs (only those missing) and builds a Release binary in
-# build/. Safe to run again: it does nothing that is already done.
+# build/ with its tests, benchmarks and Python module, or only the targets given
+# (`setup.sh rcdem`). Safe to run again: it does nothing that is already done.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -26,4 +27,5 @@ BUILD_DIR=${BUILD_DIR:-build}
 # The portable reference build (CMakePresets.json "release"); RCDEM_NATIVE=ON for -march=native.
 cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release -DRCDEM_NATIVE="${RCDEM_NATIVE:-OFF}" \
       ${RCDEM_WERROR:+-DRCDEM_WERROR=$RCDEM_WERROR} >/dev/null
-cmake --build "$BUILD_DIR" -j "$(nproc)"
+# Arguments name the targets to build (the quick start needs only `rcdem`); none builds all.
+cmake --build "$BUILD_DIR" -j "$(nproc)" ${1:+--target "$@"}
