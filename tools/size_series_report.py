@@ -67,7 +67,7 @@ def read_run(case_dir):
                sigma_n=3 * peak * beam["span"] / (2 * beam["b"] * beam["h"] ** 2),
                reaction_peak_N=None if rs is None else float(np.max(rs)),
                damage_J=float(rows[-1]["dissipated_damage_J"]), steps=summary.get("steps"),
-               wall_s=summary.get("seconds"))
+               wall_s=summary.get("seconds"), commit=summary.get("rcdem", {}).get("git_hash"))
     return run
 
 
@@ -163,7 +163,8 @@ def analyse(runs):
     hs = sorted({r["h"] for r in runs})
     g_f = [r["damage_J"] / (r["b"] * r["h"]) for r in plain]
     k_ic = math.sqrt(E_TABLE1 * float(np.mean(g_f))) if g_f else None
-    report = dict(depths_m=hs, cells=[dict(h_m=k[0], **cell_stats(v)) for k, v in cells.items()],
+    report = dict(depths_m=hs, commits=sorted({str(r["commit"]) for r in runs}),
+                  cells=[dict(h_m=k[0], **cell_stats(v)) for k, v in cells.items()],
                   fit_r_free=fit_size_effect([r["h"] for r in plain], [r["sigma_n"] for r in plain]),
                   fit_r_1=fit_size_effect([r["h"] for r in plain], [r["sigma_n"] for r in plain], 1.0),
                   G_F_J_per_m2=ens.describe(g_f) if g_f else None, K_IC_Pa_sqrt_m=k_ic,
@@ -263,6 +264,9 @@ def spread(e, scale, digits):
 
 def markdown(report):
     lines = ["# Size series", "",
+             f"{sum(len(c['seeds']) for c in report['cells'])} runs by rcdem "
+             f"{', '.join(report['commits'])} (tools/size_series_report.py; SI in size_effect.json). "
+             "Per depth and steel ratio, over the packings.", "",
              "| h [mm] | ρ [%] | bars | packings | peak [kN] mean ± sd (range) | σN [MPa] mean ± sd (range) | "
              "supports' peak [kN] | plate ÷ supports | classes |", "|---|---|---|---|---|---|---|---|---|"]
     for c in report["cells"]:
