@@ -114,18 +114,9 @@ def scenario(h, ratio, mode, include):
              + plate("load", "z+", length / 2, 0.2 * h, velocity=mode["velocity"],
                      ramp=RAMP_AT_100 * h / 0.1))
     scale = h / 0.1
-    text += ("\n[loading]\ncontrol_plate = \"load\"\n\n"
-             "[solver]\ntime_step_estimate = \"assembled\"\ndt_safety = 0.7\ndamping = 0.3\n"
-             "particle_rotational_inertia_scaling = 2.5\n"
-             + (f"added_mass_limit = {mode['added_mass']:g}\n" if mode["added_mass"] else "")
-             + ("bar_rotational_inertia_scaling = 30\n" if count else "")
-             + "\n"
-             f"[stop]\ndisplacement = {mode['stop'] * scale:g}   # m of midspan deflection\n"
-             "load_drop = 0.2        # or the load below 20% of its peak after it\n"
-             + (f"post_peak_displacement = {mode['post_peak'] * scale:g}   # or this far past the peak's deflection\n"
-                if mode["post_peak"] else "")
-             + "\n"
-             f"[output]\nsnapshots = {mode['snapshots']}\n")
+    post_peak = mode["post_peak"] and mode["post_peak"] * scale
+    text += tpb.loading_tail(mode, count > 0, mode["stop"] * scale, post_peak,
+                             "or this far past the peak's deflection")
     return text
 
 

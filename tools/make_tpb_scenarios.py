@@ -59,6 +59,24 @@ def coarse_particles(k):
             f"[generation.mortar]\nd_min = {k * D_MORTAR[0]:g}\nd_max = {k * D_MORTAR[1]:g}\n\n")
 
 
+def loading_tail(mode, has_bars, stop, post_peak, post_peak_note="or 1 mm past the peak's deflection"):
+    """[loading], [solver], [stop] and [output] of a bending scenario (also make_size_series.py's)."""
+    return ("\n[loading]\ncontrol_plate = \"load\"\n\n"
+            "[solver]\ntime_step_estimate = \"assembled\"   # 2 / omega_max of the whole beam (docs/model.md 6)\n"
+            "dt_safety = 0.7        # of the damped critical step: an unchanged answer (docs/case-study.md)\n"
+            "damping = 0.3          # 0.7 lifts the cracking load with the rate (docs/case-study.md)\n"
+            "particle_rotational_inertia_scaling = 2.5   # their rotation no longer sets the step\n"
+            + (f"added_mass_limit = {mode['added_mass']:g}   # selective mass scaling: the bars' cylinders no longer set the step\n"
+               if mode.get("added_mass") else "")
+            + ("bar_rotational_inertia_scaling = 30   # the bars' rotation no longer sets the step\n" if has_bars else "")
+            + "\n"
+            f"[stop]\ndisplacement = {stop:g}   # m of midspan deflection\n"
+            "load_drop = 0.2        # or the load below 20% of its peak after it\n"
+            + (f"post_peak_displacement = {post_peak:g}   # {post_peak_note}\n" if post_peak else "")
+            + "\n"
+            f"[output]\nsnapshots = {mode['snapshots']}\n")
+
+
 def scenario(model, interface, mode):
     n, d, fy, p_exp = MODELS[model]
     up = "../" if mode["sub"] else ""
@@ -78,21 +96,7 @@ def scenario(model, interface, mode):
     plates = (plate("support_left", "z-", x0) + "\n" + plate("support_right", "z-", L - x0) + "\n"
               + plate("load", "z+", L / 2, velocity=mode.get("by_model", {}).get(model, mode["velocity"]),
                       ramp=mode["ramp"]))
-    tail = ("\n[loading]\ncontrol_plate = \"load\"\n\n"
-            "[solver]\ntime_step_estimate = \"assembled\"   # 2 / omega_max of the whole beam (docs/model.md 6)\n"
-            "dt_safety = 0.7        # of the damped critical step: an unchanged answer (docs/case-study.md)\n"
-            "damping = 0.3          # 0.7 lifts the cracking load with the rate (docs/case-study.md)\n"
-            "particle_rotational_inertia_scaling = 2.5   # their rotation no longer sets the step\n"
-            + (f"added_mass_limit = {mode['added_mass']:g}   # selective mass scaling: the bars' cylinders no longer set the step\n"
-               if mode.get("added_mass") else "")
-            + ("bar_rotational_inertia_scaling = 30   # the bars' rotation no longer sets the step\n" if n else "")
-            + "\n"
-            f"[stop]\ndisplacement = {mode['stop']:g}   # m of midspan deflection\n"
-            "load_drop = 0.2        # or the load below 20% of its peak after it\n"
-            + (f"post_peak_displacement = {mode['post_peak']:g}   # or 1 mm past the peak's deflection\n"
-               if mode["post_peak"] else "")
-            + "\n"
-            f"[output]\nsnapshots = {mode['snapshots']}\n")
+    tail = loading_tail(mode, n > 0, mode["stop"], mode["post_peak"])
     return head + bars + plates + tail
 
 

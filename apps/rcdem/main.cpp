@@ -206,7 +206,7 @@ double calibration_cube_side(const rcdem::Scenario& base, std::optional<double> 
   const auto& s = base.specimen;
   const bool cube =
       s.shape == "box" && s.size.x() > 0.0 && s.size.x() == s.size.y() && s.size.y() == s.size.z();
-  return cube ? s.size.x() : 0.160;
+  return cube ? s.size.x() : rcdem::kPaperCubeSide;
 }
 
 int calibrate(const fs::path& scenario_path, fs::path out, bool force,

@@ -23,7 +23,7 @@ Scenario uniaxial_scenario(const Scenario& base, UniaxialMode mode, const Uniaxi
   // (and the ramp below) spans as many wave transits of the cube as on the paper's: a cube of
   // particles coarser by k and k times larger is then the paper's cube scaled, in time too
   // (docs/model.md 7). The paper's cube and smaller ones keep SPEC 9's rates.
-  const Real transit_scale = std::max(Real{1}, opt.size / 0.160);
+  const Real transit_scale = std::max(Real{1}, opt.size / kPaperCubeSide);
   const Real rate =
       opt.rate_factor * (compression ? opt.compression_rate : opt.tension_rate) / transit_scale;
   PlateSettings bottom;

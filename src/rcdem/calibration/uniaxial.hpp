@@ -14,9 +14,13 @@ namespace rcdem {
 
 enum class UniaxialMode { Compression, Tension };
 
+// The paper's calibration cube (Table 1's specimen), the default and the reference for the
+// loading of larger cubes.
+constexpr Real kPaperCubeSide = 0.160;  // m
+
 struct UniaxialOptions {
-  Real size = 0.160;       // cube side [m]
-  Real rate_factor = 1.0;  // multiplies the loading rates below (quasi-static checks)
+  Real size = kPaperCubeSide;  // cube side [m]
+  Real rate_factor = 1.0;      // multiplies the loading rates below (quasi-static checks)
   // Axial strain rates [1/s] on cubes up to the paper's 160 mm; above it they fall as 160 mm /
   // side (uniaxial_scenario).
   Real compression_rate = 1.25;
