@@ -25,7 +25,6 @@ of Table 3, another set-up, or a swept key: `rcdem study --sweep`), the report i
 Lengths in files are SI; plot axes are labelled in mm and kN.
 """
 import csv
-import glob
 import json
 import math
 import os
