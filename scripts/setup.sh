@@ -7,7 +7,7 @@ cd "$(dirname "$0")/.."
 
 PACKAGES=(build-essential cmake ninja-build pkg-config git
           voro++-dev libeigen3-dev libtomlplusplus-dev libcli11-dev libfmt-dev nlohmann-json3-dev
-          libgtest-dev libgmock-dev libbenchmark-dev
+          libgtest-dev libgmock-dev libbenchmark-dev libmetis-dev
           python3 python3-dev python3-numpy python3-scipy python3-matplotlib python3-meshio
           python3-pytest pybind11-dev help2man)
 
