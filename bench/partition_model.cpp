@@ -156,11 +156,16 @@ Machine machine_options(int argc, char** argv, idx_t& seed) {
     const double v = std::strtod(argv[i + 1], &end);
     if (end == argv[i + 1] || *end != '\0' || !std::isfinite(v) || v <= 0)
       rcdem::fail("{} expects a number > 0, got '{}'", name, argv[i + 1]);
-    if (name == "--seconds-per-point") m.seconds_per_point = v;
-    else if (name == "--latency") m.latency = v;
-    else if (name == "--bandwidth") m.bandwidth = v;
-    else if (name == "--seed") seed_value = v;
-    else rcdem::fail("unknown option '{}'", name);
+    if (name == "--seconds-per-point")
+      m.seconds_per_point = v;
+    else if (name == "--latency")
+      m.latency = v;
+    else if (name == "--bandwidth")
+      m.bandwidth = v;
+    else if (name == "--seed")
+      seed_value = v;
+    else
+      rcdem::fail("unknown option '{}'", name);
   }
   seed = static_cast<idx_t>(seed_value);
   return m;
@@ -173,9 +178,9 @@ std::vector<idx_t> partition(MetisGraph& g, int parts, idx_t seed) {
   idx_t opts[METIS_NOPTIONS];
   METIS_SetDefaultOptions(opts);
   opts[METIS_OPTION_SEED] = seed;
-  const int rc = METIS_PartGraphKway(&n, &ncon, g.xadj.data(), g.adjncy.data(), g.vwgt.data(),
-                                     nullptr, g.adjwgt.data(), &np, nullptr, nullptr, opts, &cut,
-                                     part.data());
+  const int rc =
+      METIS_PartGraphKway(&n, &ncon, g.xadj.data(), g.adjncy.data(), g.vwgt.data(), nullptr,
+                          g.adjwgt.data(), &np, nullptr, nullptr, opts, &cut, part.data());
   if (rc != METIS_OK) rcdem::fail("METIS failed for P = {}", parts);
   return part;
 }
@@ -225,12 +230,13 @@ int main(int argc, char** argv) {
       const double t_x = p > 1 ? static_cast<double>(max_nb) * m.latency + bytes / m.bandwidth : 0;
       const double t_red = p > 1 ? 2 * std::ceil(std::log2(p)) * m.latency : 0;
       const double t = t_comp + t_x + t_red;
-      std::fprintf(out, "%d,%ld,%ld,%ld,%.1f,%.4f,%.4f,%ld,%.1f,%ld,%.0f,%.4e,%.4e,%.4e,%.4e,%.3f,%.4f\n",
-                   p, static_cast<long>(bodies), total_points, max_pts, mean_pts,
-                   static_cast<double>(max_pts) / mean_pts,
-                   static_cast<double>(sum_pts - total_points) / static_cast<double>(total_points),
-                   max_gh, static_cast<double>(sum_gh) / p, max_nb, bytes, t_comp, t_x, t_red, t,
-                   t1 / t, t1 / t / p);
+      std::fprintf(
+          out, "%d,%ld,%ld,%ld,%.1f,%.4f,%.4f,%ld,%.1f,%ld,%.0f,%.4e,%.4e,%.4e,%.4e,%.3f,%.4f\n", p,
+          static_cast<long>(bodies), total_points, max_pts, mean_pts,
+          static_cast<double>(max_pts) / mean_pts,
+          static_cast<double>(sum_pts - total_points) / static_cast<double>(total_points), max_gh,
+          static_cast<double>(sum_gh) / p, max_nb, bytes, t_comp, t_x, t_red, t, t1 / t,
+          t1 / t / p);
       std::fflush(out);
       std::printf("P=%d max_points=%ld ghosts=%ld neighbours=%ld t_step=%.3e speedup=%.1f\n", p,
                   max_pts, max_gh, max_nb, t, t1 / t);

@@ -58,8 +58,8 @@ struct BilinearSoftening {
   // caller has already rotated s.fs and s.us into that plane. Requires c.kn > 0 and c.ks > 0.
   // V: Vec3, or PlaneVec (frame components) in the contact loop.
   template <typename V>
-  [[gnu::always_inline]] LawResult update(const LocalPointConstants& c, State<V>& s,
-                                          Real u_n, const V& u_s) const {
+  [[gnu::always_inline]] LawResult update(const LocalPointConstants& c, State<V>& s, Real u_n,
+                                          const V& u_s) const {
     const Real fn_old = s.fn;
     const V fs_old = s.fs;
     const Real dun = u_n - s.un;
@@ -85,10 +85,12 @@ struct BilinearSoftening {
     const bool max_grew = s.un > s.un_max || us_sq > s.us_max_sq;
     s.un_max = std::max(s.un_max, s.un);
     s.us_max_sq = std::max(s.us_max_sq, us_sq);
+    // A broken point (D = 1, the most (S4) gives) keeps D = 1 whatever its maxima: an opening
+    // crack's points, whose opening grows every step, skip the divisions and the square root.
     Real d = s.damage;
     const bool past_n = c.kn * s.un_max > c.fn_max;
     const bool past_s = c.ks * c.ks * s.us_max_sq > c.c_max * c.c_max;
-    if (max_grew && (past_n || past_s)) {
+    if (max_grew && d < 1 && (past_n || past_s)) {
       const Real d_n = past_n ? softening_damage(s.un_max, c.fn_max / c.kn, u_nu()) : 0;  // (S3)
       const Real d_s =
           past_s ? softening_damage(std::sqrt(s.us_max_sq), c.c_max / c.ks, u_su()) : 0;  // (S3)
