@@ -10,7 +10,8 @@
 //
 // Usage: rcdem_partition_model SCENARIO.toml OUT.csv P1,P2,... [--seconds-per-point S]
 //            [--latency A] [--bandwidth B] [--seed K]
-//   S: one thread's step time per local point [s] (measured: rcdem_step_bench on the specimen);
+//   S: one core's step time per local point [s] (default 1.24e-8: the AN4 beam intact on a
+//      16-core machine at 16 threads, per core, docs/parallel.md; rcdem_step_bench measures it);
 //   A: a message's latency [s] (default 2e-6); B: a link's bandwidth [bytes/s] (default 1e10).
 #include <metis.h>
 
@@ -127,7 +128,7 @@ std::vector<RankLoad> rank_loads(const std::vector<Edge>& edges, const std::vect
 }
 
 struct Machine {
-  double seconds_per_point = 1.7e-8, latency = 2e-6, bandwidth = 1e10;
+  double seconds_per_point = 1.24e-8, latency = 2e-6, bandwidth = 1e10;
 };
 
 std::vector<int> parse_parts(const std::string& text) {
