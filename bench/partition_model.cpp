@@ -39,17 +39,20 @@ constexpr double kGhostBytes = 8 * 8 + 3 * 8;
 // A bar's node or tie is not cut unless METIS must: weighted as this many local points.
 constexpr idx_t kBarEdgeWeight = 1000;
 
-// One edge of the body graph: its two bodies and the local points it carries (its work).
+// One edge of the body graph: its two bodies, the local points it carries (its owner's work; none
+// for a bar's node or tie) and its weight for METIS (a cut's cost).
 struct Edge {
   Index a, b;
-  idx_t points;
+  idx_t points, weight;
 };
 
 std::vector<Edge> body_graph(const rcdem::Specimen& s, Index& bodies) {
   std::vector<Edge> edges;
   const auto add_network = [&](const rcdem::ContactNetwork& net) {
-    for (Index c = 0; c < net.contact_count(); ++c)
-      edges.push_back({net.particle_a[c], net.particle_b[c], static_cast<idx_t>(net.points_of(c))});
+    for (Index c = 0; c < net.contact_count(); ++c) {
+      const auto points = static_cast<idx_t>(net.points_of(c));
+      edges.push_back({net.particle_a[c], net.particle_b[c], points, points});
+    }
   };
   add_network(s.contacts);
   for (const auto& in : s.interfaces) add_network(in.net);
@@ -59,10 +62,10 @@ std::vector<Edge> body_graph(const rcdem::Specimen& s, Index& bodies) {
     first[k + 1] = first[k] + static_cast<Index>(s.bars[k].cylinders.size());
   for (std::size_t k = 0; k < s.bars.size(); ++k)
     for (const auto& node : s.bars[k].nodes)
-      edges.push_back({first[k] + node[0], first[k] + node[1], kBarEdgeWeight});
+      edges.push_back({first[k] + node[0], first[k] + node[1], 0, kBarEdgeWeight});
   for (const auto& t : s.ties)
     edges.push_back({first[static_cast<std::size_t>(t.bar_a)] + t.cylinder_a,
-                     first[static_cast<std::size_t>(t.bar_b)] + t.cylinder_b, kBarEdgeWeight});
+                     first[static_cast<std::size_t>(t.bar_b)] + t.cylinder_b, 0, kBarEdgeWeight});
   bodies = first.back();
   return edges;
 }
@@ -79,12 +82,10 @@ MetisGraph metis_graph(const std::vector<Edge>& edges, Index bodies) {
   g.vwgt.assign(static_cast<std::size_t>(bodies), 1);
   for (const Edge& e : edges) {
     if (e.a == e.b) continue;
-    adj[static_cast<std::size_t>(e.a)][e.b] += e.points;
-    adj[static_cast<std::size_t>(e.b)][e.a] += e.points;
-    if (e.points < kBarEdgeWeight) {
-      g.vwgt[static_cast<std::size_t>(e.a)] += e.points;
-      g.vwgt[static_cast<std::size_t>(e.b)] += e.points;
-    }
+    adj[static_cast<std::size_t>(e.a)][e.b] += e.weight;
+    adj[static_cast<std::size_t>(e.b)][e.a] += e.weight;
+    g.vwgt[static_cast<std::size_t>(e.a)] += e.points;
+    g.vwgt[static_cast<std::size_t>(e.b)] += e.points;
   }
   g.xadj.push_back(0);
   for (const auto& row : adj) {
@@ -111,10 +112,9 @@ std::vector<RankLoad> rank_loads(const std::vector<Edge>& edges, const std::vect
   for (const Edge& e : edges) {
     const auto pa = static_cast<std::size_t>(part[static_cast<std::size_t>(e.a)]);
     const auto pb = static_cast<std::size_t>(part[static_cast<std::size_t>(e.b)]);
-    const long work = e.points < kBarEdgeWeight ? e.points : 0;
-    load[pa].points += work;
+    load[pa].points += e.points;
     if (pa == pb) continue;
-    load[pb].points += work;
+    load[pb].points += e.points;
     ghosts[pa].insert(e.b);
     ghosts[pb].insert(e.a);
   }
@@ -205,7 +205,7 @@ int main(int argc, char** argv) {
     const std::vector<Edge> edges = body_graph(s, bodies);
     MetisGraph g = metis_graph(edges, bodies);
     long total_points = 0;
-    for (const Edge& e : edges) total_points += e.points < kBarEdgeWeight ? e.points : 0;
+    for (const Edge& e : edges) total_points += e.points;
     const double t1 = m.seconds_per_point * static_cast<double>(total_points);
     std::FILE* out = std::fopen(argv[2], "w");
     if (!out) rcdem::fail("cannot write {}", argv[2]);
