@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <thread>
@@ -23,10 +24,14 @@
 #include "rcdem/core/build_info.hpp"
 #include "rcdem/core/child_process.hpp"
 #include "rcdem/core/error.hpp"
+#if defined(RCDEM_WITH_MPI)
+#include "rcdem/mpi/mpi_communicator.hpp"
+#endif
 #include "rcdem/core/progress.hpp"
 #include "rcdem/core/thread_waiting.hpp"
 #include "rcdem/io/atomic_file.hpp"
 #include "rcdem/io/specimen_output.hpp"
+#include "rcdem/run/distributed_run.hpp"
 #include "rcdem/run/run.hpp"
 #include "rcdem/run/run_directory.hpp"
 #include "rcdem/specimens/specimen.hpp"
@@ -145,11 +150,15 @@ void restore_interrupted_force(const fs::path& dir) {
                dir.string());
 }
 
+// Rank 0's group in `mpirun -np N rcdem run` (run/distributed_run.hpp); none otherwise.
+rcdem::RankGroup* g_ranks = nullptr;
+
 int run(const fs::path& scenario_path, fs::path out, bool force, const fs::path& resume,
         std::string checkpoint_every, bool checkpoint_every_given,
         std::optional<std::uint64_t> seed, const std::vector<std::string>& sets,
         const std::string& threads, const std::vector<std::string>& command) {
   rcdem::RunOptions options;
+  options.ranks = g_ranks;
   options.handle_signals = true;
   options.threads = parse_threads(threads);
   options.command = command;
@@ -317,12 +326,34 @@ const char* unknown_subcommand(const CLI::App& app, int argc, char** argv) {
 
 }  // namespace
 
+#if defined(RCDEM_WITH_MPI)
+// A rank other than 0 of `mpirun -np N rcdem run`: builds and follows rank 0, which reports the
+// run and every failure they share; a failure of this rank alone ends every rank. Stop signals are
+// rank 0's to act on (mpirun passes them to every rank).
+int follow(rcdem::RankGroup& group, const std::string& threads) {
+  std::signal(SIGINT, SIG_IGN);
+  std::signal(SIGTERM, SIG_IGN);
+  rcdem::Progress::set_quiet_default(true);
+  try {
+    return rcdem::follow_run(group, threads == "auto" ? 0 : parse_threads(threads));
+  } catch (const std::exception& e) {
+    std::cerr << "rcdem: error on rank " << group.comm().rank() << ": " << one_line(e.what())
+              << "\n";
+    group.comm().abort(1);
+  }
+  return 1;
+}
+#endif
+
 int main(int argc, char** argv) {
   rcdem::prefer_passive_thread_waiting();  // before any OpenMP call (core/thread_waiting.hpp)
   // A file-size limit (ulimit -f) then fails a write with EFBIG, which rcdem reports like any
   // write failure, instead of killing the run without a word or a checkpoint.
   std::signal(SIGXFSZ, SIG_IGN);
   rcdem::stop_with_parent_process();
+#if defined(RCDEM_WITH_MPI)
+  rcdem::MpiSession mpi(argc, argv);
+#endif
   CLI::App app{"rcdem: 3D rigid-particle model for reinforced-concrete fracture"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "rcdem " + std::string(rcdem::build_version()) + " (" +
@@ -459,13 +490,32 @@ int main(int argc, char** argv) {
     return 2;
   }
   rcdem::Progress::set_quiet_default(quiet);
+  std::unique_ptr<rcdem::Communicator> comm;
+  std::unique_ptr<rcdem::RankGroup> group;
+#if defined(RCDEM_WITH_MPI)
+  if (mpi.size() > 1) {
+    comm = std::make_unique<rcdem::MpiCommunicator>();
+    if (!*runc) {
+      if (comm->leader())
+        std::cerr << "rcdem: error: only 'rcdem run' runs on several MPI ranks (this is one of "
+                  << comm->size() << "); run the other commands without mpirun\n";
+      return 2;
+    }
+    group = std::make_unique<rcdem::RankGroup>(*comm);
+    if (!comm->leader()) return follow(*group, run_threads);
+    g_ranks = group.get();
+  }
+#endif
   try {
     if (*gen) return generate(scenario, out, force);
-    if (*runc)
-      return run(scenario, out, force, resume, checkpoint_every,
-                 runc->count("--checkpoint-every") > 0,
-                 runc->count("--seed") > 0 ? std::optional<std::uint64_t>(run_seed) : std::nullopt,
-                 sets, run_threads, std::vector<std::string>(argv, argv + argc));
+    if (*runc) {
+      const int code =
+          run(scenario, out, force, resume, checkpoint_every, runc->count("--checkpoint-every") > 0,
+              runc->count("--seed") > 0 ? std::optional<std::uint64_t>(run_seed) : std::nullopt,
+              sets, run_threads, std::vector<std::string>(argv, argv + argc));
+      if (group) group->finish(0);
+      return code;
+    }
     if (*cal)
       return calibrate(scenario, out, force, size, rate_factor, sets, target, tolerance, iterations,
                        peak_only, tension_lever);
@@ -476,9 +526,11 @@ int main(int argc, char** argv) {
       return 0;
     }
   } catch (const rcdem::Error& e) {
+    if (group) group->finish(1);
     std::cerr << "rcdem: error: " << one_line(e.what()) << "\n";
     return 1;
   } catch (const std::exception& e) {
+    if (group) group->finish(1);
     std::cerr << "rcdem: internal error: " << one_line(e.what()) << "\n";
     return 3;
   }

@@ -11,7 +11,7 @@ import sys
 
 # Bottom to top.
 LAYERS = [
-    ("core",),
+    ("core", "mpi"),
     ("config",),
     ("specimens", "packing", "tessellation", "state", "contact", "reinforcement"),
     ("io",),

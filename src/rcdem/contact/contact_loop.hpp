@@ -400,12 +400,13 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
   constexpr Index kBlock = CondensedBlock::kSize;
   cs.size_blocks(in.net.contact_count(), kBlock);
   if (!cond) {
-    parallel_for_blocks(in.net.contact_count(), kBlock, [&](Index begin, Index end) {
-      PointTransitions sum;
-      for (Index c = begin; c < end; ++c)
-        note_transitions(cs, c, evaluate_contact(law, in, cs, cond, c), sum);
-      cs.block_transitions[static_cast<std::size_t>(begin / kBlock)] = sum;
-    });
+    parallel_for_listed_blocks(
+        cs.evaluated_blocks, in.net.contact_count(), kBlock, [&](Index begin, Index end) {
+          PointTransitions sum;
+          for (Index c = begin; c < end; ++c)
+            note_transitions(cs, c, evaluate_contact(law, in, cs, cond, c), sum);
+          cs.block_transitions[static_cast<std::size_t>(begin / kBlock)] = sum;
+        });
     cs.tally_transitions(kBlock);
     return;
   }
@@ -418,60 +419,62 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
     cs.block_damage.assign(static_cast<std::size_t>(blocks), 0.0);
     cs.block_friction.assign(static_cast<std::size_t>(blocks), 0.0);
   }
-  parallel_for_blocks(in.net.contact_count(), kBlock, [&](Index begin, Index end) {
-    CondensedBlock block;
-    evaluate_condensed_block(ci, begin, end - begin, cs, block);
-    // The contacts that go through their points form their frames first (by c - begin); the
-    // held ones are listed, then evaluated together in SIMD lanes (those that leave their room
-    // join the visited ones); then every visited contact's points.
-    Index visit[CondensedBlock::kSize], held[CondensedBlock::kSize];
-    ContactFrame frames[CondensedBlock::kSize];
-    Index visits = 0, helds = 0;
-    for (Index c = begin; c < end; ++c) {
-      const bool was_condensed = cond->condensed[c];
-      const bool keep = cond->intact[c] && block.below_limits[c - begin];
-      cond->condensed[c] = keep;
-      if (keep) continue;
-      if (was_condensed) evaluate_contact<Law, true>(law, *previous, cs, cond, c);
-      if (kHoldableLaw<Law> && cond->held.held[c]) {  // its frame comes with its sums
-        prefetch_held(cond->held, c);
-        // What the kernel gathers that the condensed kernel has not brought in: B's spin above
-        // all (a line of its own, anywhere in the bodies), and the stored frame.
-        __builtin_prefetch(in.w + in.net.particle_b[c]);
-        __builtin_prefetch(in.w + in.net.particle_a[c]);
-        __builtin_prefetch(cs.normal.data() + c);
-        __builtin_prefetch(cs.tangent.data() + c);
-        held[helds++] = c;
-        continue;
-      }
-      prefetch_points(in.net, cs.point, c);
-      contact_frame(in, cs, cond, c, frames[c - begin]);
-      visit[visits++] = c;
-    }
-    if constexpr (kHoldableLaw<Law>)
-      if (helds > 0)
-        visits = evaluate_held_contacts(law, in, *previous, cs, *cond, held, helds, frames, begin,
-                                        energy, visit, visits);
-    PointTransitions changed;
-    for (Index k = 0; k < visits; ++k)
-      note_transitions(cs, visit[k],
-                       contact_points(law, in, cs, cond, visit[k], frames[visit[k] - begin]),
-                       changed);
-    if constexpr (kHoldableLaw<Law>)
-      if (cond->held.enabled) hold_visited_contacts(in, cs, *cond, visit, visits, frames, begin);
-    if (energy) keep_point_energies(law, in.net, cs, visit, visits, energy);
-    cs.block_transitions[static_cast<std::size_t>(begin / kBlock)] = changed;
-    // Contacts evaluated from their sums dissipate exactly zero, so the kernel does not store it
-    // (16 bytes a contact less to write) and the block sums its visited contacts, in contact
-    // order: the same sum as over all of them with zeros.
-    Real damage = 0.0, friction = 0.0;
-    for (Index k = 0; k < visits; ++k) {
-      damage += cs.dissipated_damage[visit[k]];
-      friction += cs.dissipated_friction[visit[k]];
-    }
-    cs.block_damage[begin / CondensedBlock::kSize] = damage;
-    cs.block_friction[begin / CondensedBlock::kSize] = friction;
-  });
+  parallel_for_listed_blocks(
+      cs.evaluated_blocks, in.net.contact_count(), kBlock, [&](Index begin, Index end) {
+        CondensedBlock block;
+        evaluate_condensed_block(ci, begin, end - begin, cs, block);
+        // The contacts that go through their points form their frames first (by c - begin); the
+        // held ones are listed, then evaluated together in SIMD lanes (those that leave their room
+        // join the visited ones); then every visited contact's points.
+        Index visit[CondensedBlock::kSize], held[CondensedBlock::kSize];
+        ContactFrame frames[CondensedBlock::kSize];
+        Index visits = 0, helds = 0;
+        for (Index c = begin; c < end; ++c) {
+          const bool was_condensed = cond->condensed[c];
+          const bool keep = cond->intact[c] && block.below_limits[c - begin];
+          cond->condensed[c] = keep;
+          if (keep) continue;
+          if (was_condensed) evaluate_contact<Law, true>(law, *previous, cs, cond, c);
+          if (kHoldableLaw<Law> && cond->held.held[c]) {  // its frame comes with its sums
+            prefetch_held(cond->held, c);
+            // What the kernel gathers that the condensed kernel has not brought in: B's spin above
+            // all (a line of its own, anywhere in the bodies), and the stored frame.
+            __builtin_prefetch(in.w + in.net.particle_b[c]);
+            __builtin_prefetch(in.w + in.net.particle_a[c]);
+            __builtin_prefetch(cs.normal.data() + c);
+            __builtin_prefetch(cs.tangent.data() + c);
+            held[helds++] = c;
+            continue;
+          }
+          prefetch_points(in.net, cs.point, c);
+          contact_frame(in, cs, cond, c, frames[c - begin]);
+          visit[visits++] = c;
+        }
+        if constexpr (kHoldableLaw<Law>)
+          if (helds > 0)
+            visits = evaluate_held_contacts(law, in, *previous, cs, *cond, held, helds, frames,
+                                            begin, energy, visit, visits);
+        PointTransitions changed;
+        for (Index k = 0; k < visits; ++k)
+          note_transitions(cs, visit[k],
+                           contact_points(law, in, cs, cond, visit[k], frames[visit[k] - begin]),
+                           changed);
+        if constexpr (kHoldableLaw<Law>)
+          if (cond->held.enabled)
+            hold_visited_contacts(in, cs, *cond, visit, visits, frames, begin);
+        if (energy) keep_point_energies(law, in.net, cs, visit, visits, energy);
+        cs.block_transitions[static_cast<std::size_t>(begin / kBlock)] = changed;
+        // Contacts evaluated from their sums dissipate exactly zero, so the kernel does not store
+        // it (16 bytes a contact less to write) and the block sums its visited contacts, in contact
+        // order: the same sum as over all of them with zeros.
+        Real damage = 0.0, friction = 0.0;
+        for (Index k = 0; k < visits; ++k) {
+          damage += cs.dissipated_damage[visit[k]];
+          friction += cs.dissipated_friction[visit[k]];
+        }
+        cs.block_damage[begin / CondensedBlock::kSize] = damage;
+        cs.block_friction[begin / CondensedBlock::kSize] = friction;
+      });
   cs.tally_transitions(kBlock);
 }
 

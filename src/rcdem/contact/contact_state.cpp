@@ -47,14 +47,18 @@ void ContactState::tally_transitions(Index block) {
   const auto contacts = static_cast<Index>(newly_broken_contact.size());
   for (std::size_t k = 0; k < block_transitions.size(); ++k) {
     const PointTransitions& t = block_transitions[k];
-    damaged_or_broken += t.damaged;
-    broken += t.broken;
+    const auto kb = static_cast<Index>(k);
+    const bool counted = kb >= counted_begin && kb < counted_end;
+    if (counted) {
+      damaged_or_broken += t.damaged;
+      broken += t.broken;
+    }
     if (t.broken == 0) continue;
-    const Index begin = static_cast<Index>(k) * block;
+    const Index begin = kb * block;
     for (Index c = begin; c < std::min(begin + block, contacts); ++c) {
       std::uint8_t& flag = newly_broken_contact[static_cast<std::size_t>(c)];
       if (!flag) continue;
-      broken_contact_log.push_back(c);
+      if (counted) broken_contact_log.push_back(c);
       flag = 0;
     }
   }

@@ -3,6 +3,7 @@
 // normals) and what it hands to the gather (one force and two torques per contact, and the
 // contact's energy terms), all as flat arrays.
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -52,7 +53,12 @@ struct ContactState {
   Index damaged_or_broken = 0, broken = 0;
   std::vector<Index> broken_contact_log;
   std::vector<PointTransitions> block_transitions;  // per block of the loop
-  std::vector<std::uint8_t> newly_broken_contact;  // per contact, cleared by the tally
+  std::vector<std::uint8_t> newly_broken_contact;   // per contact, cleared by the tally
+  // A distributed run's share (solver/decomposition.hpp): the loop's blocks this rank evaluates
+  // (all when empty), and those whose transitions it counts and logs, [counted_begin,
+  // counted_end) (the others' flags are only cleared).
+  std::vector<Index> evaluated_blocks;
+  Index counted_begin = 0, counted_end = std::numeric_limits<Index>::max();
   void size_blocks(Index contacts, Index block);
   void tally_transitions(Index block);  // the blocks' transitions into the totals and the log
   void recount();

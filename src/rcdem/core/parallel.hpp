@@ -4,6 +4,7 @@
 // shared locations; reductions are gathers over per-item results, so results do not depend on the
 // thread count.
 #include <cstdint>
+#include <vector>
 
 namespace rcdem {
 
@@ -34,6 +35,25 @@ void parallel_for_blocks(std::int64_t n, std::int64_t block, Body&& body) {
 #endif
   for (std::int64_t k = 0; k < blocks; ++k) {
     const std::int64_t begin = k * block;
+    body(begin, begin + block < n ? begin + block : n);
+  }
+}
+
+// parallel_for_blocks over only the blocks listed in `blocks` (block numbers, ascending): a
+// distributed run's share of a loop (solver/decomposition.hpp); every block of n when empty.
+template <typename Body>
+void parallel_for_listed_blocks(const std::vector<std::int64_t>& blocks, std::int64_t n,
+                                std::int64_t block, Body&& body) {
+  if (blocks.empty()) {
+    parallel_for_blocks(n, block, body);
+    return;
+  }
+  const auto count = static_cast<std::int64_t>(blocks.size());
+#if defined(_OPENMP)
+#pragma omp parallel for schedule(dynamic, 4) if (count * block >= kParallelMinItems)
+#endif
+  for (std::int64_t k = 0; k < count; ++k) {
+    const std::int64_t begin = blocks[static_cast<std::size_t>(k)] * block;
     body(begin, begin + block < n ? begin + block : n);
   }
 }

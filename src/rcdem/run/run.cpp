@@ -34,13 +34,14 @@
 #include "rcdem/io/specimen_output.hpp"
 #include "rcdem/run/checkpoint.hpp"
 #include "rcdem/run/crack_record.hpp"
+#include "rcdem/run/distributed_run.hpp"
 #include "rcdem/run/observers.hpp"
 #include "rcdem/run/run_manifest.hpp"
-#include "rcdem/solver/test_measures.hpp"
 #include "rcdem/run/run_output.hpp"
 #include "rcdem/run/run_session.hpp"
 #include "rcdem/run/run_signals.hpp"
 #include "rcdem/run/run_warnings.hpp"
+#include "rcdem/solver/test_measures.hpp"
 
 namespace rcdem {
 
@@ -138,9 +139,10 @@ bool complete_finished_run(const fs::path& dir) {
   if (m.is_discarded() || !m.is_object() || m.value("exit_state", "") != "running") return false;
   const auto s = nlohmann::json::parse(read_text(dir / "summary.json"), nullptr, false);
   if (s.is_discarded() || !s.is_object() || !s.contains("steps") || !s["steps"].is_number())
-    fail("--resume '{}': summary.json is damaged and the manifest says the run never finished; "
-         "start the run again (-o {} --force)",
-         dir.string(), dir.string());
+    fail(
+        "--resume '{}': summary.json is damaged and the manifest says the run never finished; "
+        "start the run again (-o {} --force)",
+        dir.string(), dir.string());
   const std::string note =
       "completed by --resume: the run wrote summary.json but stopped before its manifest's last "
       "update";
@@ -303,6 +305,7 @@ RunLoop::RunLoop(const Scenario& sc, const fs::path& out, const RunOptions& opt,
 
 void RunLoop::restore() {
   const io::RestoreReport rep = io::restore_latest_checkpoint(out_, parts_, session_.inputs().hash);
+  if (opt_.ranks) opt_.ranks->restored(sim_, rep.file.string(), session_.inputs().hash);
   for (const auto& line : rep.rejected) fmt::print(stderr, "rcdem: warning: {}\n", line);
   const std::string writer = fmt::format("rcdem {} ({})", build_version(), build_git_hash());
   if (rep.header.writer != writer)
@@ -353,14 +356,14 @@ void RunLoop::warn_output_volume() const {
   const double count = 1.0 + std::floor(expected_ / static_cast<double>(loop_.snapshot_every));
   const double bytes = first * count;
   const fs::space_info space = fs::space(out_, ec);
-  const double free = ec ? std::numeric_limits<double>::infinity()
-                         : static_cast<double>(space.available);
+  const double free =
+      ec ? std::numeric_limits<double>::infinity() : static_cast<double>(space.available);
   const bool every_step = static_cast<double>(sc_.output.snapshots) > expected_;
   if (bytes < kLargeOutputBytes && bytes < 0.2 * free && !every_step) return;
-  std::string why = every_step ? fmt::format(
-                                     "; output.snapshots = {} is more than the run's {:.0f} steps",
-                                     sc_.output.snapshots, expected_)
-                               : fmt::format("; output.snapshots = {}", sc_.output.snapshots);
+  std::string why = every_step
+                        ? fmt::format("; output.snapshots = {} is more than the run's {:.0f} steps",
+                                      sc_.output.snapshots, expected_)
+                        : fmt::format("; output.snapshots = {}", sc_.output.snapshots);
   if (bytes >= 0.2 * free) why += fmt::format("; {:.3g} GB are free on its disk", free / 1e9);
   fmt::print(stderr,
              "rcdem: warning: the snapshots will take about {:.3g} GB ({:.0f} snapshots of {:.3g} "
@@ -579,7 +582,10 @@ nlohmann::ordered_json RunLoop::summary_json(const RunSummary& r, double wall, d
   j["seconds"] = wall;
   const ThreadRecord t = threads_.record();
   j["step_seconds"] = t.step_seconds;
-  j["threads"] = {{"tuned", t.tuned}, {"max", t.max}, {"last", t.last}, {"mean", t.mean},
+  j["threads"] = {{"tuned", t.tuned},
+                  {"max", t.max},
+                  {"last", t.last},
+                  {"mean", t.mean},
                   {"changes", t.changes}};
   j["rcdem"] = {{"version", build_version()},
                 {"git_hash", build_git_hash()},
@@ -645,13 +651,19 @@ void start(const Scenario& sc, const fs::path& out, const RunOptions& opt, RunSe
 }
 
 // The specimen and its solver, the set-up's failures named after the scenario.
+// Distributed, every rank builds at once and the run starts only if all did.
 void build(const Scenario& sc, const fs::path& out, const RunOptions& opt, RunSession& session,
            std::optional<Simulation>& sim) {
+  if (opt.ranks) opt.ranks->start(sc);
+  std::string failure;
   try {
     sim.emplace(sc, build_specimen(sc));
+    if (opt.ranks) sim->distribute(opt.ranks->comm());
   } catch (const Error& e) {
-    rethrow_naming(sc.source.string(), e);
+    if (!opt.ranks) rethrow_naming(sc.source.string(), e);
+    failure = e.what();
   }
+  if (opt.ranks && !opt.ranks->built(failure)) rethrow_naming(sc.source.string(), Error(failure));
   start(sc, out, opt, session, *sim);
 }
 

@@ -10,6 +10,8 @@
 
 namespace rcdem {
 
+class RankGroup;
+
 struct RunSummary {
   std::string stop_reason;  // a stop rule, or "interrupted" (a signal; see `signal`)
   int signal = 0;           // SIGINT or SIGTERM when interrupted
@@ -68,6 +70,9 @@ struct RunOptions {
   // Threads (--threads): 0 follows the free cores during the loop, up to the OpenMP runtime's
   // count (core/thread_count_tuner.hpp); N > 0 runs exactly N, the specimen's generation included.
   int threads = 0;
+  // Rank 0 of a distributed run (run/distributed_run.hpp): the simulation is distributed over the
+  // group's ranks, which build it with this one and follow its steps.
+  RankGroup* ranks = nullptr;
 };
 
 // Checks that the scenario describes a run that can end: plates, a control plate where a rule

@@ -94,6 +94,8 @@ SnapshotWriter::SnapshotWriter(fs::path dir, bool binary, bool facets)
 }
 
 void SnapshotWriter::write(const Simulation& sim) {
+  // Every point current (a distributed run's: on this rank) before the first array reads them.
+  sim.catch_up_condensed_points();
   const Bodies& b = sim.bodies();
   const Particles& p = sim.specimen().particles;
   const VtuEncoding enc = binary_ ? VtuEncoding::Binary : VtuEncoding::Ascii;
@@ -217,10 +219,10 @@ History::History(const Simulation& sim, const Scenario& sc)
   if (ties_) columns_.emplace_back("max_tie_force_N");
   const auto plates = sc.load_plates();
   displacement_column_ = !sc.displacement_gauge.empty() ? "gauge_" + sc.displacement_gauge + "_m"
-                         : plates.size() > 1           ? "control_displacement_m"
-                         : plates.size() == 1          ? plates[0] + "_displacement_m"
-                         : sc.control_bar.empty()      ? ""
-                                                       : sc.control_bar + "_pull_displacement_m";
+                         : plates.size() > 1            ? "control_displacement_m"
+                         : plates.size() == 1           ? plates[0] + "_displacement_m"
+                         : sc.control_bar.empty()       ? ""
+                                                        : sc.control_bar + "_pull_displacement_m";
 }
 
 void History::record(const Simulation& sim) {
@@ -238,9 +240,10 @@ void History::record(const Simulation& sim) {
   row.insert(row.end(),
              {strain.x(), strain.y(), strain.z(), interior.x(), interior.y(), interior.z()});
   const Energy& e = sim.energy();
-  row.insert(row.end(), {measures_.load(), e.kinetic, e.strain, e.damage, e.friction, e.damping, e.external_work,
-                         e.balance_error(), static_cast<double>(sim.damaged_points()),
-                         static_cast<double>(sim.broken_points())});
+  row.insert(row.end(),
+             {measures_.load(), e.kinetic, e.strain, e.damage, e.friction, e.damping,
+              e.external_work, e.balance_error(), static_cast<double>(sim.damaged_points()),
+              static_cast<double>(sim.broken_points())});
   if (bars_)
     row.insert(row.end(), {sim.max_axial_force(), static_cast<double>(sim.yielded_nodes()),
                            static_cast<double>(sim.broken_interface_points()), e.plastic});

@@ -55,11 +55,42 @@ void ConcreteContacts::catch_up(Real dt) const {
                      condensation_);
 }
 
+void ConcreteContacts::distribute(const Decomposition& d, Communicator& comm) {
+  comm_ = &comm;
+  const auto r = static_cast<std::size_t>(d.rank);
+  contacts_.evaluated_blocks = d.evaluated_blocks;
+  const std::vector<Index> blocks = d.contact_blocks(Decomposition::kContactBlock);
+  contacts_.counted_begin = blocks[r];
+  contacts_.counted_end = blocks[r + 1];
+  dissipation_block_offsets_ = blocks;
+  energy_block_offsets_ = d.contact_blocks(Decomposition::kEnergyBlock);
+  contact_offsets_ = d.contact_offsets;
+  scatter_begin_ = d.sphere_offsets[r];
+  scatter_spheres_end_ = d.sphere_offsets[r + 1];
+  spheres_ = d.sphere_offsets.back();
+}
+
+void ConcreteContacts::finish_evaluation() {
+  if (!comm_) return;
+  ContactState& cs = contacts_;
+  if (!cs.block_damage.empty()) {
+    comm_->allgather(cs.block_damage, dissipation_block_offsets_);
+    comm_->allgather(cs.block_friction, dissipation_block_offsets_);
+  } else {
+    comm_->allgather(cs.dissipated_damage, contact_offsets_);
+    comm_->allgather(cs.dissipated_friction, contact_offsets_);
+  }
+}
+
 void ConcreteContacts::scatter(Bodies& bodies) const {
   const ContactState& cs = contacts_;
   const BodyContacts& bc = body_contacts_;
+  // Distributed: this rank's spheres, then the bodies past every sphere (the bars' cylinders).
+  const Index first = scatter_begin_, own_end = comm_ ? scatter_spheres_end_ : bodies.size();
   const Index n = bodies.size();
-  parallel_for(n, [&](Index i) {
+  const Index count = (own_end - first) + (comm_ ? n - spheres_ : 0);
+  parallel_for(count, [&](Index k) {
+    const Index i = first + k < own_end ? first + k : spheres_ + (k - (own_end - first));
     // A body's B-side contacts belong to particles before it along the curve, some far before:
     // their forces are no longer in cache, and waiting on them was most of the gather. Requested
     // a few bodies ahead, they arrive while it sums (measured in bench/RESULTS.md). The A side
@@ -110,9 +141,16 @@ void ConcreteContacts::add_strain_energy(Real& sum) const {
   constexpr Index kBlock = 1024;
   const Index n = net.contact_count();
   strain_energy_blocks_.assign(static_cast<std::size_t>((n + kBlock - 1) / kBlock), 0.0);
+  // Distributed: this rank's blocks, then every rank's onto rank 0 (the others' sum is unused).
+  std::vector<Index> own;
+  if (comm_) {
+    const auto r = static_cast<std::size_t>(comm_->rank());
+    for (Index b = energy_block_offsets_[r]; b < energy_block_offsets_[r + 1]; ++b)
+      own.push_back(b);
+  }
   std::visit(
       [&](const auto& law) {
-        parallel_for_blocks(n, kBlock, [&](Index begin, Index end) {
+        parallel_for_listed_blocks(own, n, kBlock, [&](Index begin, Index end) {
           // Condensed contacts from their sums at the last evaluation's kinematics (their
           // histories are stale), the others from their points.
           Real e = 0.0;
@@ -134,6 +172,7 @@ void ConcreteContacts::add_strain_energy(Real& sum) const {
         });
       },
       law_);
+  if (comm_) comm_->gather(strain_energy_blocks_, energy_block_offsets_);
   Real e = 0.0;
   for (const Real block : strain_energy_blocks_) e += block;
   sum += e;
@@ -141,9 +180,9 @@ void ConcreteContacts::add_strain_energy(Real& sum) const {
 
 Real ConcreteContacts::held_energy(Index c) const {
   // In the frame the last evaluation stored, at its poses.
-  return held_strain_energy(condensation_.sums, c, condensation_.held.sums(c),
-                            contacts_.normal[c], contacts_.tangent[c], kinematics_->pose.ptr(),
-                            net_->particle_a[c], net_->particle_b[c]);
+  return held_strain_energy(condensation_.sums, c, condensation_.held.sums(c), contacts_.normal[c],
+                            contacts_.tangent[c], kinematics_->pose.ptr(), net_->particle_a[c],
+                            net_->particle_b[c]);
 }
 
 void ConcreteContacts::visit_springs(SpringVisitor& v, const Bodies& bodies) const {

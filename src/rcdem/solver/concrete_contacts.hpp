@@ -10,7 +10,9 @@
 #include "rcdem/contact/contact_state.hpp"
 #include "rcdem/contact/elastic_condensation.hpp"
 #include "rcdem/contact/laws/law_registry.hpp"
+#include "rcdem/core/communicator.hpp"
 #include "rcdem/solver/body_contacts.hpp"
+#include "rcdem/solver/decomposition.hpp"
 #include "rcdem/solver/step_part.hpp"
 #include "rcdem/state/bodies.hpp"
 
@@ -25,11 +27,18 @@ class ConcreteContacts final : public StepPart {
                    const BodyKinematics& kinematics);
 
   void evaluate(const StepContext& ctx) override;
+  // A distributed run: every rank's dissipation blocks to every rank.
+  void finish_evaluation() override;
   // Assigns every body's force and torque (it visits every body: the first part in the list).
   void scatter(Bodies& bodies) const override;
   void add_dissipation(StepDissipation& d) const override;
   void add_strain_energy(Real& sum) const override;
   void visit_springs(SpringVisitor& v, const Bodies& bodies) const override;
+
+  // A distributed run (solver/decomposition.hpp): evaluate the share `d` gives this rank, assign
+  // the forces of its spheres (and of the bodies past them), and sum the ledger over every rank's
+  // blocks through `comm`.
+  void distribute(const Decomposition& d, Communicator& comm);
 
   // Brings the histories of the contacts condensed at the last evaluation up to that step.
   void catch_up(Real dt) const;
@@ -54,6 +63,12 @@ class ConcreteContacts final : public StepPart {
   ContactInputs inputs(const std::vector<Vec3>& positions,
                        const std::vector<Eigen::Matrix3d>& rotation, Real dt) const;
   Real held_energy(Index c) const;  // held contact c's at the last evaluation
+
+  // A distributed run's: the ranks, the strain energy's blocks per rank, the spheres this rank
+  // assigns (then every body from `scatter_spheres_end_`), all of them when not distributed.
+  Communicator* comm_ = nullptr;
+  std::vector<Index> energy_block_offsets_, contact_offsets_, dissipation_block_offsets_;
+  Index scatter_begin_ = 0, scatter_spheres_end_ = 0, spheres_ = 0;
 
   const ContactNetwork* net_;
   const Bodies* bodies_;

@@ -8,11 +8,12 @@ namespace rcdem {
 
 bool Integrator::advance(Bodies& b, const PrescribedMotion& motion, Real dt) {
   const Real alpha = damping_;
-  const SphereStepOutputs out{sums_.damping_work.data(), sums_.kinetic.data(),
-                              sums_.jumped.data()};
+  const SphereStepOutputs out{sums_.damping_work.data(), sums_.kinetic.data(), sums_.jumped.data()};
   // Each block also sums its bodies' energies and flags (in body order) while they are in cache:
   // the step's ledger adds the blocks in order instead of passing over every body on one thread.
-  parallel_for_blocks(sums_.spheres, BodyStepSums::kSphereBlock, [&](Index begin, Index end) {
+  const Index first = sphere_begin_, last = sphere_end_ < 0 ? sums_.spheres : sphere_end_;
+  parallel_for_blocks(last - first, BodyStepSums::kSphereBlock, [&](Index from, Index to) {
+    const Index begin = first + from, end = first + to;
     advance_spheres(b, begin, end, dt, alpha, out);
     BodyStepSums::Block s;
     for (Index i = begin; i < end; ++i) {
@@ -23,10 +24,15 @@ bool Integrator::advance(Bodies& b, const PrescribedMotion& motion, Real dt) {
     sums_.blocks[static_cast<std::size_t>(begin / BodyStepSums::kSphereBlock)] = s;
   });
   for (Index i = sums_.spheres; i < b.size(); ++i) advance_cylinder(b, i, motion, dt);
-  bool jumped = false;
-  for (const BodyStepSums::Block& s : sums_.blocks) jumped |= s.jumped != 0;
-  for (Index i = sums_.spheres; i < b.size(); ++i) jumped |= sums_.jumped[i] != 0;
-  return jumped;
+  return jumped();
+}
+
+bool Integrator::jumped() const {
+  bool any = false;
+  for (const BodyStepSums::Block& s : sums_.blocks) any |= s.jumped != 0;
+  for (std::size_t i = static_cast<std::size_t>(sums_.spheres); i < sums_.jumped.size(); ++i)
+    any |= sums_.jumped[i] != 0;
+  return any;
 }
 
 void Integrator::advance_cylinder(Bodies& b, Index i, const PrescribedMotion& motion, Real dt) {
@@ -56,8 +62,8 @@ void Integrator::advance_cylinder(Bodies& b, Index i, const PrescribedMotion& mo
   // set w); cylinders keep the angular momentum.
   if (b.inertia[i].x() == b.inertia[i].z()) b.angular_momentum[i] = b.inertia[i].x() * w_old;
   const Vec3 L_old = b.angular_momentum[i];
-  const Vec3 w_new = advance_rotation(b.orientation[i], b.angular_momentum[i], b.inertia[i],
-                                      t - td, dt, b.orientation0[i]);
+  const Vec3 w_new = advance_rotation(b.orientation[i], b.angular_momentum[i], b.inertia[i], t - td,
+                                      dt, b.orientation0[i]);
   Real damping_work = 0.0;
   damping_work += fd.dot(0.5 * (v_old + v_new)) * dt + td.dot(0.5 * (w_old + w_new)) * dt;
   sums_.damping_work[i] = damping_work;

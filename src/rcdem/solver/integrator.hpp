@@ -18,10 +18,20 @@ class Integrator {
   // Advances every body over dt; true if a body jumped (moved a twentieth of its size or turned
   // kStableTurnLimit in one step: a numerical instability).
   bool advance(Bodies& b, const PrescribedMotion& motion, Real dt);
+  // Whether a body jumped at the last advance (from the blocks' flags and the cylinders').
+  bool jumped() const;
   // The first body that jumped at the last advance, or -1.
   Index first_jumped() const;
   // This step's damping work and the kinetic energy, summed in a fixed order.
   void add_energies(Real& damping_work, Real& kinetic) const;
+
+  // A distributed run: this rank advances the spheres [begin, end) (whole blocks) and every body
+  // past the spheres; the others' arrive by RankExchange::share_spheres.
+  void share_spheres(Index begin, Index end) {
+    sphere_begin_ = begin;
+    sphere_end_ = end;
+  }
+  BodyStepSums& step_sums() { return sums_; }
 
   Real damping() const { return damping_; }
   void set_damping(Real alpha) { damping_ = alpha; }
@@ -39,6 +49,7 @@ class Integrator {
 
   BodyStepSums sums_;
   Real damping_;
+  Index sphere_begin_ = 0, sphere_end_ = -1;  // -1: every sphere
 };
 
 }  // namespace rcdem

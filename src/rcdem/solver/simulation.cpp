@@ -77,7 +77,59 @@ Simulation::Simulation(const Scenario& sc, Specimen specimen)
   }
 }
 
-void Simulation::catch_up_condensed_points() const { concrete_.catch_up(time_step_.dt); }
+void Simulation::catch_up_condensed_points() const {
+  concrete_.catch_up(time_step_.dt);
+  if (!exchange_ || gathered_step_ == steps_) return;
+  tell_ranks(RankCommand::GatherState);
+  // Logically const: rank 0's copy of the other ranks' share, brought up to date.
+  const_cast<Simulation*>(this)->gather_state();
+}
+
+void Simulation::gather_state() {
+  concrete_.catch_up(time_step_.dt);
+  exchange_->gather_state(concrete_.state(), specimen_.contacts, bodies_, integrator_.step_sums());
+  gathered_step_ = steps_;
+}
+
+void Simulation::distribute(Communicator& comm) {
+  const Index spheres = integrator_.step_sums().spheres;
+  if (spheres != specimen_.concrete())
+    fail(
+        "a distributed run needs every concrete particle free and isotropic and no bar cylinder "
+        "isotropic ({} leading isotropic bodies, {} particles); run it on one rank",
+        spheres, specimen_.concrete());
+  Decomposition d = Decomposition::build(specimen_.contacts, spheres, comm.rank(), comm.size());
+  concrete_.distribute(d, comm);
+  const auto r = static_cast<std::size_t>(d.rank);
+  integrator_.share_spheres(d.sphere_offsets[r], d.sphere_offsets[r + 1]);
+  exchange_ = std::make_unique<RankExchange>(comm, std::move(d));
+}
+
+void Simulation::tell_ranks(RankCommand command, std::int64_t value) const {
+  if (exchange_ && exchange_->leader()) exchange_->exchange({command, value});
+}
+
+RankMessage Simulation::follow() {
+  for (;;) {
+    const RankMessage m = exchange_->exchange({});
+    switch (m.command) {
+      case RankCommand::Step:
+        step();
+        break;
+      case RankCommand::StrainEnergy:
+        (void)strain_energy();
+        break;
+      case RankCommand::GatherState:
+        gather_state();
+        break;
+      case RankCommand::KeepStrainEnergy:
+        strain_energy_every_ = m.value;
+        break;
+      default:
+        return m;
+    }
+  }
+}
 
 const PulledBar* Simulation::find_pulled_bar(const std::string& name) const {
   return pulled_.find(name);
@@ -86,16 +138,29 @@ const PulledBar* Simulation::find_pulled_bar(const std::string& name) const {
 const Plate* Simulation::find_plate(const std::string& name) const { return plates_.find(name); }
 
 void Simulation::step() {
+  tell_ranks(RankCommand::Step);
+  const TallyMark before = TallyMark::of(concrete_.state());
   kinematics_.update(bodies_);  // the poses every part's evaluation reads
   const StepContext ctx = context();
   for (StepPart* p : parts_) p->evaluate(ctx);
   run_part_tasks();
   for (StepPart* p : parts_) p->finish_evaluation();
+  if (exchange_) exchange_->gather_transitions(concrete_.state(), specimen_.contacts, before);
   for (StepPart* p : parts_) p->scatter(bodies_);  // the first assigns, the rest add
   for (StepPart* p : parts_) p->prescribe(prescribed_, ctx.clock);
-  if (integrator_.advance(bodies_, prescribed_, time_step_.dt)) check_stability();
+  if (advance()) check_stability();
   for (StepPart* p : parts_) p->drive(bodies_, ctx.clock, energy_);
   book_step();
+}
+
+bool Simulation::advance() {
+  const bool jumped = integrator_.advance(bodies_, prescribed_, time_step_.dt);
+  if (!exchange_) return jumped;
+  exchange_->share_spheres(bodies_, integrator_.step_sums());
+  if (!integrator_.jumped()) return false;
+  exchange_->share_jumps(integrator_.step_sums());
+  // Rank 0 reports it; the others wait for its RankCommand::Finish.
+  return exchange_->leader();
 }
 
 void Simulation::run_part_tasks() {
@@ -133,6 +198,7 @@ void Simulation::check_stability() const {
 }
 
 Real Simulation::strain_energy() const {
+  tell_ranks(RankCommand::StrainEnergy);
   Real strain = 0.0;
   for (const StepPart* p : ledger_order_) p->add_strain_energy(strain);
   return strain;

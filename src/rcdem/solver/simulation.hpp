@@ -18,6 +18,7 @@
 #include "rcdem/solver/loading_rate.hpp"
 #include "rcdem/solver/plates.hpp"
 #include "rcdem/solver/pulled_bars.hpp"
+#include "rcdem/solver/rank_exchange.hpp"
 #include "rcdem/solver/step_part.hpp"
 #include "rcdem/solver/time_step_choice.hpp"
 #include "rcdem/specimens/specimen.hpp"
@@ -35,6 +36,18 @@ class Simulation {
   Simulation& operator=(const Simulation&) = delete;
 
   void step();
+
+  // A distributed run (docs/parallel.md): from now on this rank steps its share of the simulation
+  // (solver/decomposition.hpp) and exchanges the rest through `comm`, which must outlive it. Rank
+  // 0 then drives the others: step, strain_energy, catch_up_condensed_points and
+  // keep_strain_energy_every first send them the same request; the others call follow().
+  void distribute(Communicator& comm);
+  // A rank other than 0: serves rank 0's requests until one it does not serve, which it returns
+  // (RankCommand::Restore, Finish).
+  RankMessage follow();
+  // Rank 0's message to the other ranks (nothing when not distributed or on another rank).
+  void tell_ranks(RankCommand command, std::int64_t value = 0) const;
+  const RankExchange* exchange() const { return exchange_.get(); }
 
   // The estimate the time step is a safety factor of (SPEC 6), with the masses after any
   // selective mass scaling: min over bodies of sqrt(m / sum k) and its rotational analogue
@@ -93,7 +106,10 @@ class Simulation {
   // Steps whose number is a multiple of n (0: none) keep their strain energy while they evaluate
   // (StepContext::report_strain_energy): a run sets its history's spacing, so that a row's
   // strain_energy() costs no pass over the contacts. The value is the same either way.
-  void keep_strain_energy_every(std::int64_t n) { strain_energy_every_ = n; }
+  void keep_strain_energy_every(std::int64_t n) {
+    tell_ranks(RankCommand::KeepStrainEnergy, n);
+    strain_energy_every_ = n;
+  }
   // The ledger's running sums (work, kinetic energy, dissipation) without the strain energy
   // (left 0): no sweep over the local points, for use every step.
   const Energy& ledger() const { return energy_; }
@@ -144,7 +160,12 @@ class Simulation {
   }
   StepClock clock() const { return {time_, time_step_.dt, loading_rate_.factor()}; }
   void run_part_tasks();
+  // The integration and, distributed, the exchange of the spheres; true if rank 0 must report an
+  // instability.
+  bool advance();
   void check_stability() const;
+  // Every rank's share of the contacts' and bodies' state onto rank 0 (RankCommand::GatherState).
+  void gather_state();
   void book_step();
 
   Specimen specimen_;
@@ -170,6 +191,8 @@ class Simulation {
   std::int64_t steps_ = 0;
   std::int64_t strain_energy_every_ = 0;  // keep_strain_energy_every
   Energy energy_;
+  std::unique_ptr<RankExchange> exchange_;  // distributed runs only
+  std::int64_t gathered_step_ = -1;         // the step whose state rank 0 last gathered
 };
 
 }  // namespace rcdem

@@ -1,0 +1,126 @@
+#include "rcdem/mpi/mpi_communicator.hpp"
+
+#include <mpi.h>
+
+#include <cstdlib>
+#include <limits>
+
+#include "rcdem/core/error.hpp"
+
+namespace rcdem {
+
+namespace {
+
+// Launchers' environment: Open MPI's mpirun, PMIx (Slurm's srun, Open MPI 5), MPICH's Hydra.
+bool launched_by_mpi() {
+  for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_SIZE", "PMI_RANK"})
+    if (std::getenv(v)) return true;
+  return false;
+}
+
+// Element counts and displacements of the ranges `offsets` describes.
+void counts_of(const std::vector<Index>& offsets, int size, std::vector<int>& count,
+               std::vector<int>& displ) {
+  if (static_cast<int>(offsets.size()) != size + 1)
+    fail("internal error: {} offsets for {} ranks", offsets.size(), size);
+  count.resize(static_cast<std::size_t>(size));
+  displ.resize(static_cast<std::size_t>(size));
+  for (int r = 0; r < size; ++r) {
+    const auto k = static_cast<std::size_t>(r);
+    if (offsets[k + 1] < offsets[k] || offsets[k + 1] > std::numeric_limits<int>::max())
+      fail("internal error: rank {}'s range [{}, {})", r, offsets[k], offsets[k + 1]);
+    count[k] = static_cast<int>(offsets[k + 1] - offsets[k]);
+    displ[k] = static_cast<int>(offsets[k]);
+  }
+}
+
+// A datatype of `bytes` contiguous bytes: the element counts stay those of the arrays.
+struct Element {
+  MPI_Datatype type{};
+  explicit Element(std::size_t bytes) {
+    MPI_Type_contiguous(static_cast<int>(bytes), MPI_BYTE, &type);
+    MPI_Type_commit(&type);
+  }
+  ~Element() { MPI_Type_free(&type); }
+  Element(const Element&) = delete;
+  Element& operator=(const Element&) = delete;
+};
+
+}  // namespace
+
+MpiSession::MpiSession(int& argc, char**& argv) {
+  if (!launched_by_mpi()) return;
+  int provided = 0;
+  MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+  active_ = true;
+}
+
+MpiSession::~MpiSession() {
+  if (active_) MPI_Finalize();
+}
+
+int MpiSession::size() const {
+  int n = 1;
+  if (active_) MPI_Comm_size(MPI_COMM_WORLD, &n);
+  return n;
+}
+
+MpiCommunicator::MpiCommunicator() {
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+  MPI_Comm_size(MPI_COMM_WORLD, &size_);
+}
+
+void MpiCommunicator::allgather(void* data, std::size_t bytes, const std::vector<Index>& offsets) {
+  std::vector<int> count, displ;
+  counts_of(offsets, size_, count, displ);
+  const Element e(bytes);
+  MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, data, count.data(), displ.data(), e.type,
+                 MPI_COMM_WORLD);
+}
+
+void MpiCommunicator::gather(void* data, std::size_t bytes, const std::vector<Index>& offsets) {
+  std::vector<int> count, displ;
+  counts_of(offsets, size_, count, displ);
+  const Element e(bytes);
+  const auto r = static_cast<std::size_t>(rank_);
+  if (rank_ == 0) {
+    MPI_Gatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, data, count.data(), displ.data(), e.type, 0,
+                MPI_COMM_WORLD);
+    return;
+  }
+  auto* mine = static_cast<char*>(data) + static_cast<std::size_t>(displ[r]) * bytes;
+  MPI_Gatherv(mine, count[r], e.type, nullptr, nullptr, nullptr, e.type, 0, MPI_COMM_WORLD);
+}
+
+void MpiCommunicator::broadcast(void* data, std::size_t bytes) {
+  MPI_Bcast(data, static_cast<int>(bytes), MPI_BYTE, 0, MPI_COMM_WORLD);
+}
+
+std::vector<std::uint8_t> MpiCommunicator::gather_bytes(const std::vector<std::uint8_t>& local) {
+  const int mine = static_cast<int>(local.size());
+  std::vector<int> count(static_cast<std::size_t>(size_)), displ(count.size());
+  MPI_Gather(&mine, 1, MPI_INT, count.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+  std::vector<std::uint8_t> all;
+  if (rank_ == 0) {
+    std::int64_t total = 0;
+    for (std::size_t r = 0; r < count.size(); ++r) {
+      displ[r] = static_cast<int>(total);
+      total += count[r];
+    }
+    all.resize(static_cast<std::size_t>(total));
+  }
+  MPI_Gatherv(local.data(), mine, MPI_BYTE, all.data(), count.data(), displ.data(), MPI_BYTE, 0,
+              MPI_COMM_WORLD);
+  return all;
+}
+
+void MpiCommunicator::sum(std::int64_t* values, int count) {
+  MPI_Allreduce(MPI_IN_PLACE, values, count, MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD);
+}
+
+void MpiCommunicator::abort(int code) {
+  MPI_Abort(MPI_COMM_WORLD, code);
+  std::_Exit(code);  // MPI_Abort does not return; this says so to the compiler
+}
+
+}  // namespace rcdem

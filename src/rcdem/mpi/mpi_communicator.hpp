@@ -1,0 +1,39 @@
+#pragma once
+// core/communicator.hpp over MPI's world communicator (built with the `mpi` preset only), and the
+// process's MPI session: initialised only when a launcher (mpirun, srun) started this process, so
+// that the same binary runs alone without one.
+#include "rcdem/core/communicator.hpp"
+
+namespace rcdem {
+
+class MpiSession {
+ public:
+  // Initialises MPI (threads: only the main thread calls it) if a launcher started the process.
+  MpiSession(int& argc, char**& argv);
+  ~MpiSession();
+  MpiSession(const MpiSession&) = delete;
+  MpiSession& operator=(const MpiSession&) = delete;
+  bool active() const { return active_; }
+  int size() const;
+
+ private:
+  bool active_ = false;
+};
+
+class MpiCommunicator final : public Communicator {
+ public:
+  MpiCommunicator();
+  int rank() const override { return rank_; }
+  int size() const override { return size_; }
+  void allgather(void* data, std::size_t bytes, const std::vector<Index>& offsets) override;
+  void gather(void* data, std::size_t bytes, const std::vector<Index>& offsets) override;
+  void broadcast(void* data, std::size_t bytes) override;
+  std::vector<std::uint8_t> gather_bytes(const std::vector<std::uint8_t>& local) override;
+  void sum(std::int64_t* values, int count) override;
+  [[noreturn]] void abort(int code) override;
+
+ private:
+  int rank_ = 0, size_ = 1;
+};
+
+}  // namespace rcdem

@@ -1,0 +1,73 @@
+#pragma once
+// What the ranks of a distributed run exchange (docs/parallel.md; the shares are
+// solver/decomposition.hpp's): every step, the spheres each rank moved and its contacts' crack
+// record; on rank 0's request, the whole state it writes (snapshots, checkpoints). Every call is
+// collective (core/communicator.hpp).
+#include <cstdint>
+
+#include "rcdem/contact/contact_state.hpp"
+#include "rcdem/core/communicator.hpp"
+#include "rcdem/solver/body_step_sums.hpp"
+#include "rcdem/solver/decomposition.hpp"
+#include "rcdem/state/bodies.hpp"
+#include "rcdem/state/contact_network.hpp"
+
+namespace rcdem {
+
+// What rank 0 asks of the others between steps (Simulation::follow serves the first four; the
+// run loop the rest).
+enum class RankCommand : std::int64_t {
+  Start = 1,  // the run loop's: the scenario follows; build the simulation
+  Step,
+  StrainEnergy,      // the ledger's strain energy (its concrete blocks gathered)
+  GatherState,       // every contact, point and body state, onto rank 0
+  KeepStrainEnergy,  // value: Simulation::keep_strain_energy_every's n
+  Restore,           // the run loop's: a checkpoint's path follows
+  Finish,            // the run ended: value 0, or 1 after an error rank 0 reports
+};
+struct RankMessage {
+  RankCommand command = RankCommand::Finish;
+  std::int64_t value = 0;
+};
+
+// The counters and log length of a ContactState before a step's tally.
+struct TallyMark {
+  Index damaged_or_broken = 0, broken = 0;
+  std::size_t log = 0;
+  static TallyMark of(const ContactState& cs) {
+    return {cs.damaged_or_broken, cs.broken, cs.broken_contact_log.size()};
+  }
+};
+
+class RankExchange {
+ public:
+  RankExchange(Communicator& comm, Decomposition d) : comm_(&comm), d_(std::move(d)) {}
+  Communicator& comm() const { return *comm_; }
+  const Decomposition& decomposition() const { return d_; }
+  bool leader() const { return comm_->leader(); }
+
+  // After the integration: each rank's spheres (their motion and the integrator's block sums)
+  // to every rank, so that every rank holds every body's state as a serial run would.
+  void share_spheres(Bodies& b, BodyStepSums& sums) const;
+  // The integrator's per-body instability flags, to every rank (for the message).
+  void share_jumps(BodyStepSums& sums) const;
+  // After a step's tally: every rank's new transitions and crack log onto rank 0, the log in
+  // contact order with the broken contacts' point records, as a serial step would have left
+  // them. The other ranks' logs are emptied.
+  void gather_transitions(ContactState& cs, const ContactNetwork& net,
+                          const TallyMark& before) const;
+  // Every contact's and point's state, the bodies' forces and the per-body step sums onto rank 0.
+  void gather_state(ContactState& cs, const ContactNetwork& net, Bodies& b,
+                    BodyStepSums& sums) const;
+  // Rank 0's message to every rank (the others receive it).
+  RankMessage exchange(RankMessage m) const {
+    comm_->broadcast(m);
+    return m;
+  }
+
+ private:
+  Communicator* comm_;
+  Decomposition d_;
+};
+
+}  // namespace rcdem
