@@ -10,6 +10,8 @@ PACKAGES=(build-essential cmake ninja-build pkg-config git
           libgtest-dev libgmock-dev libbenchmark-dev libmetis-dev
           python3 python3-dev python3-numpy python3-scipy python3-matplotlib python3-meshio
           python3-pytest pybind11-dev help2man)
+# The distributed run's build (CMakePresets.json "mpi"; the test command builds it): Open MPI.
+[ "${RCDEM_SETUP_MPI:-0}" = 1 ] && PACKAGES+=(libopenmpi-dev openmpi-bin)
 
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -353,6 +353,10 @@ int main(int argc, char** argv) {
   rcdem::stop_with_parent_process();
 #if defined(RCDEM_WITH_MPI)
   rcdem::MpiSession mpi(argc, argv);
+  // Under mpirun every rank parses the same command line: rank 0 alone reports its errors.
+  const bool report = mpi.rank() == 0;
+#else
+  const bool report = true;
 #endif
   CLI::App app{"rcdem: 3D rigid-particle model for reinforced-concrete fracture"};
   app.require_subcommand(1);
@@ -477,16 +481,18 @@ int main(int argc, char** argv) {
     std::string names;
     for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; }))
       names += (names.empty() ? "" : ", ") + sub->get_name();
-    std::cerr << "rcdem: error: unknown command '" << one_line(unknown)
-              << "' (the commands are: " << names << "; rcdem --help says more)\n";
+    if (report)
+      std::cerr << "rcdem: error: unknown command '" << one_line(unknown)
+                << "' (the commands are: " << names << "; rcdem --help says more)\n";
     return 2;
   }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
-    std::cerr << "rcdem: error: " << one_line(e.what())
-              << " (rcdem --help lists the commands and options)\n";
+    if (e.get_exit_code() == 0) return report ? app.exit(e) : 0;  // --help, --version
+    if (report)
+      std::cerr << "rcdem: error: " << one_line(e.what())
+                << " (rcdem --help lists the commands and options)\n";
     return 2;
   }
   rcdem::Progress::set_quiet_default(quiet);

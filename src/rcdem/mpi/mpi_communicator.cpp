@@ -65,6 +65,12 @@ int MpiSession::size() const {
   return n;
 }
 
+int MpiSession::rank() const {
+  int r = 0;
+  if (active_) MPI_Comm_rank(MPI_COMM_WORLD, &r);
+  return r;
+}
+
 MpiCommunicator::MpiCommunicator() {
   MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
   MPI_Comm_size(MPI_COMM_WORLD, &size_);

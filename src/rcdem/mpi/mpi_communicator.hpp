@@ -15,6 +15,7 @@ class MpiSession {
   MpiSession& operator=(const MpiSession&) = delete;
   bool active() const { return active_; }
   int size() const;
+  int rank() const;  // 0 when not launched by MPI
 
  private:
   bool active_ = false;
