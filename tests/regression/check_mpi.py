@@ -4,7 +4,9 @@
   * `mpirun -np 2` and `-np 3 rcdem run` give the same history.csv, broken_points.csv, every
     snapshot file and summary.json (but its wall-clock fields) as `rcdem run` on: the quick AN2
     NL-B beam past its first crack (18,000 steps: two bars, their interfaces and nodes, three
-    plates), the pull-out of a bar with the NL-B interface, and the tension cube past its peak;
+    plates), the pull-out of a bar with the NL-B interface, the tension cube past its peak (with
+    and without the condensation of intact contacts), and the cyclic pull-out (a loading
+    program);
   * a 2-rank run stopped by SIGINT after a checkpoint, resumed on 3 ranks, and another resumed on
     one process, end with the same outputs as the uninterrupted run;
   * a bad scenario under `mpirun -q` (without -q mpirun adds its own note on the exit code): one
@@ -38,6 +40,8 @@ def check(cond, what, detail=""):
 
 
 WALL_CLOCK = {"seconds", "loop_seconds", "steps_per_second", "step_seconds", "threads"}
+# summary.json's record of the ranks (their count, rank 0's time in exchanges): the run's own.
+WALL_CLOCK.add("distributed")
 CKPT = re.compile(r"^checkpoint_(\d{12})\.rcp$")
 # Open MPI as root needs the first option; the others let 3 ranks share 2 cores without binding.
 MPI_OPTIONS = ["--allow-run-as-root", "--oversubscribe", "--bind-to", "none"]
@@ -47,6 +51,10 @@ CASES = {
                        ["--set", "stop.steps=18000"]),
     "pull_out_NL-B": ("examples/pull_out/NL-B.toml", []),
     "tension_cube": ("tests/golden/scenarios/tension_cube60.toml", []),
+    # Every contact through its points (no condensation): the dissipation per contact.
+    "tension_cube_points": ("tests/golden/scenarios/tension_cube60.toml",
+                            ["--set", "solver.condense_elastic_contacts=false"]),
+    "cyclic_pull_out": ("examples/cyclic/pull_out.toml", []),
 }
 
 

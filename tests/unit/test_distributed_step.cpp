@@ -57,16 +57,16 @@ class ThreadRanks final : public Communicator {
     if (rank_ != 0) std::memcpy(data, s_->data[0], bytes);
     s_->sync.arrive_and_wait();
   }
-  std::vector<std::uint8_t> gather_bytes(const std::vector<std::uint8_t>& local) override {
+  void gather_bytes(const std::vector<std::uint8_t>& local,
+                    std::vector<std::uint8_t>& all) override {
     publish(const_cast<std::vector<std::uint8_t>*>(&local));
-    std::vector<std::uint8_t> all;
+    all.clear();
     if (rank_ == 0)
       for (void* p : s_->data) {
         const auto& v = *static_cast<const std::vector<std::uint8_t>*>(p);
         all.insert(all.end(), v.begin(), v.end());
       }
     s_->sync.arrive_and_wait();
-    return all;
   }
   void sum(std::int64_t* values, int count) override {
     std::vector<std::int64_t> mine(values, values + count);

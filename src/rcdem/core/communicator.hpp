@@ -25,8 +25,10 @@ class Communicator {
   virtual void gather(void* data, std::size_t bytes, const std::vector<Index>& offsets) = 0;
   // Rank 0's `bytes` bytes at `data` to every rank.
   virtual void broadcast(void* data, std::size_t bytes) = 0;
-  // Each rank's `local` appended on rank 0 in rank order (other ranks get nothing back).
-  virtual std::vector<std::uint8_t> gather_bytes(const std::vector<std::uint8_t>& local) = 0;
+  // Each rank's `local` appended in rank order into rank 0's `all` (resized; the others' is left
+  // empty).
+  virtual void gather_bytes(const std::vector<std::uint8_t>& local,
+                            std::vector<std::uint8_t>& all) = 0;
   // Every rank's `values` summed element by element, on every rank (integers: exact, so the
   // result does not depend on the order the ranks are combined in).
   virtual void sum(std::int64_t* values, int count) = 0;

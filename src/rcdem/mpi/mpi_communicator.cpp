@@ -102,22 +102,23 @@ void MpiCommunicator::broadcast(void* data, std::size_t bytes) {
   MPI_Bcast(data, static_cast<int>(bytes), MPI_BYTE, 0, MPI_COMM_WORLD);
 }
 
-std::vector<std::uint8_t> MpiCommunicator::gather_bytes(const std::vector<std::uint8_t>& local) {
+void MpiCommunicator::gather_bytes(const std::vector<std::uint8_t>& local,
+                                   std::vector<std::uint8_t>& all) {
   const int mine = static_cast<int>(local.size());
-  std::vector<int> count(static_cast<std::size_t>(size_)), displ(count.size());
-  MPI_Gather(&mine, 1, MPI_INT, count.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
-  std::vector<std::uint8_t> all;
+  count_.resize(static_cast<std::size_t>(size_));
+  displ_.resize(count_.size());
+  MPI_Gather(&mine, 1, MPI_INT, count_.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+  all.clear();
   if (rank_ == 0) {
     std::int64_t total = 0;
-    for (std::size_t r = 0; r < count.size(); ++r) {
-      displ[r] = static_cast<int>(total);
-      total += count[r];
+    for (std::size_t r = 0; r < count_.size(); ++r) {
+      displ_[r] = static_cast<int>(total);
+      total += count_[r];
     }
     all.resize(static_cast<std::size_t>(total));
   }
-  MPI_Gatherv(local.data(), mine, MPI_BYTE, all.data(), count.data(), displ.data(), MPI_BYTE, 0,
+  MPI_Gatherv(local.data(), mine, MPI_BYTE, all.data(), count_.data(), displ_.data(), MPI_BYTE, 0,
               MPI_COMM_WORLD);
-  return all;
 }
 
 void MpiCommunicator::sum(std::int64_t* values, int count) {

@@ -29,12 +29,14 @@ class MpiCommunicator final : public Communicator {
   void allgather(void* data, std::size_t bytes, const std::vector<Index>& offsets) override;
   void gather(void* data, std::size_t bytes, const std::vector<Index>& offsets) override;
   void broadcast(void* data, std::size_t bytes) override;
-  std::vector<std::uint8_t> gather_bytes(const std::vector<std::uint8_t>& local) override;
+  void gather_bytes(const std::vector<std::uint8_t>& local,
+                    std::vector<std::uint8_t>& all) override;
   void sum(std::int64_t* values, int count) override;
   [[noreturn]] void abort(int code) override;
 
  private:
   int rank_ = 0, size_ = 1;
+  std::vector<int> count_, displ_;  // gather_bytes's, kept between calls
 };
 
 }  // namespace rcdem

@@ -42,7 +42,8 @@ void RankGroup::start(const Scenario& sc) {
 bool RankGroup::built(const std::string& failure) {
   std::vector<std::uint8_t> mine(failure.begin(), failure.end());
   mine.push_back(0);
-  const std::vector<std::uint8_t> all = comm_->gather_bytes(mine);
+  std::vector<std::uint8_t> all;
+  comm_->gather_bytes(mine, all);
   std::int64_t failed = failure.empty() ? 0 : 1;
   comm_->sum(&failed, 1);
   if (!comm_->leader()) return failed == 0;

@@ -587,6 +587,11 @@ nlohmann::ordered_json RunLoop::summary_json(const RunSummary& r, double wall, d
                   {"last", t.last},
                   {"mean", t.mean},
                   {"changes", t.changes}};
+  if (const RankExchange* x = sim_.exchange())  // a distributed run (docs/parallel.md)
+    j["distributed"] = {
+        {"ranks", x->comm().size()},
+        {"rank_0_exchange_seconds", x->seconds()},
+        {"rank_0_evaluated_points", x->decomposition().evaluated_points(sim_.specimen().contacts)}};
   j["rcdem"] = {{"version", build_version()},
                 {"git_hash", build_git_hash()},
                 {"build", build_flavour()},

@@ -62,24 +62,10 @@ void ConcreteContacts::distribute(const Decomposition& d, Communicator& comm) {
   const std::vector<Index> blocks = d.contact_blocks(Decomposition::kContactBlock);
   contacts_.counted_begin = blocks[r];
   contacts_.counted_end = blocks[r + 1];
-  dissipation_block_offsets_ = blocks;
   energy_block_offsets_ = d.contact_blocks(Decomposition::kEnergyBlock);
-  contact_offsets_ = d.contact_offsets;
   scatter_begin_ = d.sphere_offsets[r];
   scatter_spheres_end_ = d.sphere_offsets[r + 1];
   spheres_ = d.sphere_offsets.back();
-}
-
-void ConcreteContacts::finish_evaluation() {
-  if (!comm_) return;
-  ContactState& cs = contacts_;
-  if (!cs.block_damage.empty()) {
-    comm_->allgather(cs.block_damage, dissipation_block_offsets_);
-    comm_->allgather(cs.block_friction, dissipation_block_offsets_);
-  } else {
-    comm_->allgather(cs.dissipated_damage, contact_offsets_);
-    comm_->allgather(cs.dissipated_friction, contact_offsets_);
-  }
 }
 
 void ConcreteContacts::scatter(Bodies& bodies) const {

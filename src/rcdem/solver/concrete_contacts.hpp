@@ -27,8 +27,6 @@ class ConcreteContacts final : public StepPart {
                    const BodyKinematics& kinematics);
 
   void evaluate(const StepContext& ctx) override;
-  // A distributed run: every rank's dissipation blocks to every rank.
-  void finish_evaluation() override;
   // Assigns every body's force and torque (it visits every body: the first part in the list).
   void scatter(Bodies& bodies) const override;
   void add_dissipation(StepDissipation& d) const override;
@@ -36,8 +34,8 @@ class ConcreteContacts final : public StepPart {
   void visit_springs(SpringVisitor& v, const Bodies& bodies) const override;
 
   // A distributed run (solver/decomposition.hpp): evaluate the share `d` gives this rank, assign
-  // the forces of its spheres (and of the bodies past them), and sum the ledger over every rank's
-  // blocks through `comm`.
+  // the forces of its spheres (and of the bodies past them), and sum the strain energy over every
+  // rank's blocks through `comm` (RankExchange shares the dissipation's).
   void distribute(const Decomposition& d, Communicator& comm);
 
   // Brings the histories of the contacts condensed at the last evaluation up to that step.
@@ -67,7 +65,7 @@ class ConcreteContacts final : public StepPart {
   // A distributed run's: the ranks, the strain energy's blocks per rank, the spheres this rank
   // assigns (then every body from `scatter_spheres_end_`), all of them when not distributed.
   Communicator* comm_ = nullptr;
-  std::vector<Index> energy_block_offsets_, contact_offsets_, dissipation_block_offsets_;
+  std::vector<Index> energy_block_offsets_;
   Index scatter_begin_ = 0, scatter_spheres_end_ = 0, spheres_ = 0;
 
   const ContactNetwork* net_;

@@ -71,10 +71,13 @@ Decomposition Decomposition::build(const ContactNetwork& net, Index spheres, int
   return d;
 }
 
-std::vector<Index> Decomposition::scaled(const std::vector<Index>& offsets, Index per) {
-  std::vector<Index> out(offsets.size());
-  for (std::size_t r = 0; r < offsets.size(); ++r) out[r] = offsets[r] * per;
-  return out;
+Index Decomposition::evaluated_points(const ContactNetwork& net) const {
+  Index points = 0;
+  for (const Index b : evaluated_blocks) {
+    const Index end = std::min(net.contact_count(), (b + 1) * kContactBlock);
+    points += net.point_begin[end] - net.point_begin[b * kContactBlock];
+  }
+  return points;
 }
 
 std::vector<Index> Decomposition::contact_blocks(Index block) const {

@@ -40,8 +40,9 @@ struct Decomposition {
   // The same ranges in units of `block` (each offset a multiple of it, the last one rounded up).
   std::vector<Index> contact_blocks(Index block) const;
   std::vector<Index> sphere_blocks(Index block) const;
-  // `offsets` in units of `per` elements each: e.g. the points of a range of contacts.
-  static std::vector<Index> scaled(const std::vector<Index>& offsets, Index per);
+  // The local points of this rank's evaluated blocks (its share of the loop's work, the cut's
+  // blocks included).
+  Index evaluated_points(const ContactNetwork& net) const;
 };
 
 }  // namespace rcdem

@@ -1,17 +1,58 @@
 #include "rcdem/solver/rank_exchange.hpp"
 
+#include <chrono>
 #include <cstring>
+#include <utility>
 
 namespace rcdem {
 
+// Adds the wall time of its scope to the exchange's.
+class ExchangeTimer {
+ public:
+  explicit ExchangeTimer(const RankExchange& x) : x_(x), start_(std::chrono::steady_clock::now()) {}
+  ~ExchangeTimer() {
+    x_.seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+  ExchangeTimer(const ExchangeTimer&) = delete;
+  ExchangeTimer& operator=(const ExchangeTimer&) = delete;
+
+ private:
+  const RankExchange& x_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+RankExchange::RankExchange(Communicator& comm, Decomposition d)
+    : comm_(&comm),
+      d_(std::move(d)),
+      contact_blocks_(d_.contact_blocks(Decomposition::kContactBlock)),
+      sphere_blocks_(d_.sphere_blocks(BodyStepSums::kSphereBlock)) {}
+
+RankMessage RankExchange::exchange(RankMessage m) const {
+  const ExchangeTimer timer(*this);
+  comm_->broadcast(m);
+  return m;
+}
+
+void RankExchange::share_dissipation(ContactState& cs) const {
+  const ExchangeTimer timer(*this);
+  if (!cs.block_damage.empty()) {
+    comm_->allgather(cs.block_damage, contact_blocks_);
+    comm_->allgather(cs.block_friction, contact_blocks_);
+    return;
+  }
+  comm_->allgather(cs.dissipated_damage, d_.contact_offsets);
+  comm_->allgather(cs.dissipated_friction, d_.contact_offsets);
+}
+
 void RankExchange::share_spheres(Bodies& b, BodyStepSums& sums) const {
+  const ExchangeTimer timer(*this);
   const std::vector<Index>& spheres = d_.sphere_offsets;
   comm_->allgather(b.position, spheres);
   comm_->allgather(b.velocity, spheres);
   comm_->allgather(b.angular_velocity, spheres);
   comm_->allgather(b.orientation, spheres);
   comm_->allgather(b.angular_momentum, spheres);
-  comm_->allgather(sums.blocks, d_.sphere_blocks(BodyStepSums::kSphereBlock));
+  comm_->allgather(sums.blocks, sphere_blocks_);
 }
 
 void RankExchange::share_jumps(BodyStepSums& sums) const {
@@ -39,8 +80,10 @@ T take(const std::uint8_t*& p) {
 
 void RankExchange::gather_transitions(ContactState& cs, const ContactNetwork& net,
                                       const TallyMark& before) const {
+  const ExchangeTimer timer(*this);
   // Each rank's message: its counters' changes, its new log entries, their points' records.
-  std::vector<std::uint8_t> mine;
+  std::vector<std::uint8_t>& mine = mine_;
+  mine.clear();
   const std::int64_t head[3] = {
       cs.damaged_or_broken - before.damaged_or_broken, cs.broken - before.broken,
       static_cast<std::int64_t>(cs.broken_contact_log.size() - before.log)};
@@ -52,7 +95,8 @@ void RankExchange::gather_transitions(ContactState& cs, const ContactNetwork& ne
       append(mine, cs.point.records.data() + net.point_begin[c],
              static_cast<std::size_t>(net.points_of(c)));
     }
-  const std::vector<std::uint8_t> all = comm_->gather_bytes(mine);
+  comm_->gather_bytes(mine, all_);
+  const std::vector<std::uint8_t>& all = all_;
   if (!leader()) {
     cs.broken_contact_log.clear();  // rank 0 keeps the run's log
     return;
@@ -77,6 +121,7 @@ void RankExchange::gather_transitions(ContactState& cs, const ContactNetwork& ne
 
 void RankExchange::gather_state(ContactState& cs, const ContactNetwork& net, Bodies& b,
                                 BodyStepSums& sums) const {
+  const ExchangeTimer timer(*this);
   const std::vector<Index>& contacts = d_.contact_offsets;
   comm_->gather(cs.normal, contacts);
   comm_->gather(cs.tangent, contacts);

@@ -40,8 +40,10 @@ struct TallyMark {
 };
 
 class RankExchange {
+  friend class ExchangeTimer;
+
  public:
-  RankExchange(Communicator& comm, Decomposition d) : comm_(&comm), d_(std::move(d)) {}
+  RankExchange(Communicator& comm, Decomposition d);
   Communicator& comm() const { return *comm_; }
   const Decomposition& decomposition() const { return d_; }
   bool leader() const { return comm_->leader(); }
@@ -49,6 +51,9 @@ class RankExchange {
   // After the integration: each rank's spheres (their motion and the integrator's block sums)
   // to every rank, so that every rank holds every body's state as a serial run would.
   void share_spheres(Bodies& b, BodyStepSums& sums) const;
+  // After the evaluation: each rank's dissipation sums (per block of the loop, or per contact
+  // without condensation) to every rank, for the ledger.
+  void share_dissipation(ContactState& cs) const;
   // The integrator's per-body instability flags, to every rank (for the message).
   void share_jumps(BodyStepSums& sums) const;
   // After a step's tally: every rank's new transitions and crack log onto rank 0, the log in
@@ -60,14 +65,19 @@ class RankExchange {
   void gather_state(ContactState& cs, const ContactNetwork& net, Bodies& b,
                     BodyStepSums& sums) const;
   // Rank 0's message to every rank (the others receive it).
-  RankMessage exchange(RankMessage m) const {
-    comm_->broadcast(m);
-    return m;
-  }
+  RankMessage exchange(RankMessage m) const;
+  // Wall time this rank has spent in the step's exchanges (waiting for the others included) and
+  // in rank 0's requests.
+  double seconds() const { return seconds_; }
 
  private:
   Communicator* comm_;
   Decomposition d_;
+  // The ranges in the loop's and the integrator's blocks; the crack log's messages (kept, so that
+  // a step allocates nothing once they have grown).
+  std::vector<Index> contact_blocks_, sphere_blocks_;
+  mutable std::vector<std::uint8_t> mine_, all_;
+  mutable double seconds_ = 0.0;
 };
 
 }  // namespace rcdem

@@ -145,7 +145,10 @@ void Simulation::step() {
   for (StepPart* p : parts_) p->evaluate(ctx);
   run_part_tasks();
   for (StepPart* p : parts_) p->finish_evaluation();
-  if (exchange_) exchange_->gather_transitions(concrete_.state(), specimen_.contacts, before);
+  if (exchange_) {
+    exchange_->share_dissipation(concrete_.state());
+    exchange_->gather_transitions(concrete_.state(), specimen_.contacts, before);
+  }
   for (StepPart* p : parts_) p->scatter(bodies_);  // the first assigns, the rest add
   for (StepPart* p : parts_) p->prescribe(prescribed_, ctx.clock);
   if (advance()) check_stability();
