@@ -210,8 +210,20 @@ def killed_rank(tmp):
     except subprocess.TimeoutExpired:
         p.kill()
         p.communicate()
-    left = [pid for pid in ranks.values() if os.path.exists(f"/proc/{pid}") and
-            open(f"/proc/{pid}/stat").read().split(")")[1].split()[0] != "Z"]
+    def alive():
+        out = []
+        for pid in ranks.values():
+            try:
+                with open(f"/proc/{pid}/stat") as f:
+                    if f.read().rsplit(")", 1)[1].split()[0] != "Z":
+                        out.append(pid)
+            except OSError:
+                pass
+        return out
+    left = alive()
+    while left and time.time() - t1 < 30:  # mpirun may return while its last ranks are dying
+        time.sleep(0.1)
+        left = alive()
     check(1 in ranks and p.returncode not in (0, None) and time.time() - t1 < 30 and not left,
           f"rank 1 killed: every rank ends ({time.time() - t1:.1f} s, exit {p.returncode}, "
           f"left {left})")

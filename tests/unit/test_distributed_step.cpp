@@ -68,6 +68,23 @@ class ThreadRanks final : public Communicator {
       }
     s_->sync.arrive_and_wait();
   }
+  void all_to_all(const std::vector<std::uint8_t>& send, const std::vector<Index>& counts_out,
+                  std::vector<std::uint8_t>& recv, const std::vector<Index>& counts_in) override {
+    struct Out {
+      const std::vector<std::uint8_t>* send;
+      const std::vector<Index>* counts;
+    } mine{&send, &counts_out};
+    publish(&mine);
+    const auto me = static_cast<std::size_t>(rank_);
+    for (int r = 0; r < s_->size; ++r) {
+      const auto& o = *static_cast<const Out*>(s_->data[static_cast<std::size_t>(r)]);
+      const auto from = static_cast<std::size_t>((*o.counts)[me]);
+      const auto n = static_cast<std::size_t>((*o.counts)[me + 1]) - from;
+      const auto at = static_cast<std::size_t>(counts_in[static_cast<std::size_t>(r)]);
+      if (n > 0) std::memcpy(recv.data() + at, o.send->data() + from, n);
+    }
+    s_->sync.arrive_and_wait();
+  }
   void sum(std::int64_t* values, int count) override {
     std::vector<std::int64_t> mine(values, values + count);
     publish(mine.data());

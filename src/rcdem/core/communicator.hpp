@@ -29,6 +29,11 @@ class Communicator {
   // empty).
   virtual void gather_bytes(const std::vector<std::uint8_t>& local,
                             std::vector<std::uint8_t>& all) = 0;
+  // Rank r's `send[counts_out[k], counts_out[k + 1])` bytes go to rank k (counts_out: byte
+  // offsets, size() + 1 entries), and rank k's to r arrive in `recv` at r's offsets `counts_in`.
+  virtual void all_to_all(const std::vector<std::uint8_t>& send,
+                          const std::vector<Index>& counts_out, std::vector<std::uint8_t>& recv,
+                          const std::vector<Index>& counts_in) = 0;
   // Every rank's `values` summed element by element, on every rank (integers: exact, so the
   // result does not depend on the order the ranks are combined in).
   virtual void sum(std::int64_t* values, int count) = 0;

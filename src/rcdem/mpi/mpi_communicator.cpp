@@ -121,6 +121,16 @@ void MpiCommunicator::gather_bytes(const std::vector<std::uint8_t>& local,
               MPI_COMM_WORLD);
 }
 
+void MpiCommunicator::all_to_all(const std::vector<std::uint8_t>& send,
+                                 const std::vector<Index>& counts_out,
+                                 std::vector<std::uint8_t>& recv,
+                                 const std::vector<Index>& counts_in) {
+  counts_of(counts_out, size_, scount_, sdispl_);
+  counts_of(counts_in, size_, rcount_, rdispl_);
+  MPI_Alltoallv(send.data(), scount_.data(), sdispl_.data(), MPI_BYTE, recv.data(), rcount_.data(),
+                rdispl_.data(), MPI_BYTE, MPI_COMM_WORLD);
+}
+
 void MpiCommunicator::sum(std::int64_t* values, int count) {
   MPI_Allreduce(MPI_IN_PLACE, values, count, MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD);
 }

@@ -31,12 +31,15 @@ class MpiCommunicator final : public Communicator {
   void broadcast(void* data, std::size_t bytes) override;
   void gather_bytes(const std::vector<std::uint8_t>& local,
                     std::vector<std::uint8_t>& all) override;
+  void all_to_all(const std::vector<std::uint8_t>& send, const std::vector<Index>& counts_out,
+                  std::vector<std::uint8_t>& recv, const std::vector<Index>& counts_in) override;
   void sum(std::int64_t* values, int count) override;
   [[noreturn]] void abort(int code) override;
 
  private:
   int rank_ = 0, size_ = 1;
-  std::vector<int> count_, displ_;  // gather_bytes's, kept between calls
+  std::vector<int> count_, displ_;                      // gather_bytes's, kept between calls
+  std::vector<int> scount_, sdispl_, rcount_, rdispl_;  // all_to_all's
 };
 
 }  // namespace rcdem

@@ -1,5 +1,6 @@
 #include "rcdem/solver/rank_exchange.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstring>
 #include <utility>
@@ -21,11 +22,66 @@ class ExchangeTimer {
   std::chrono::steady_clock::time_point start_;
 };
 
-RankExchange::RankExchange(Communicator& comm, Decomposition d)
+namespace {
+
+// A sphere's motion as a ghost receives it: position, velocity, spin, orientation, angular
+// momentum (16 words).
+constexpr std::size_t kGhostBytes = 3 * sizeof(Vec3) + sizeof(Quat) + sizeof(Vec3);
+static_assert(sizeof(Vec3) == 24 && sizeof(Quat) == 32, "the ghost message's layout");
+
+// The spheres rank r reads and does not advance, ascending: the ends of the contacts it
+// evaluates and the shared ones; rank 0 every sphere.
+std::vector<Index> ghosts_of(const ContactNetwork& net, const Decomposition& any, int r,
+                             const std::vector<Index>& shared) {
+  const Index spheres = any.sphere_offsets.back();
+  const auto k = static_cast<std::size_t>(r);
+  const Index lo = any.sphere_offsets[k], hi = any.sphere_offsets[k + 1];
+  std::vector<std::uint8_t> read(static_cast<std::size_t>(spheres), r == 0 ? 1 : 0);
+  if (r != 0) {
+    const Decomposition d = Decomposition::build(net, spheres, r, any.ranks);
+    for (const Index b : d.evaluated_blocks)
+      for (Index c = b * Decomposition::kContactBlock;
+           c < std::min(net.contact_count(), (b + 1) * Decomposition::kContactBlock); ++c) {
+        read[static_cast<std::size_t>(net.particle_a[c])] = 1;
+        read[static_cast<std::size_t>(net.particle_b[c])] = 1;
+      }
+    for (const Index i : shared)
+      if (i < spheres) read[static_cast<std::size_t>(i)] = 1;
+  }
+  std::vector<Index> out;
+  for (Index i = 0; i < spheres; ++i)
+    if (read[static_cast<std::size_t>(i)] && (i < lo || i >= hi)) out.push_back(i);
+  return out;
+}
+
+}  // namespace
+
+RankExchange::RankExchange(Communicator& comm, Decomposition d, const ContactNetwork& net,
+                           const std::vector<Index>& shared)
     : comm_(&comm),
       d_(std::move(d)),
       contact_blocks_(d_.contact_blocks(Decomposition::kContactBlock)),
-      sphere_blocks_(d_.sphere_blocks(BodyStepSums::kSphereBlock)) {}
+      sphere_blocks_(d_.sphere_blocks(BodyStepSums::kSphereBlock)) {
+  // Each rank works out every rank's ghosts (the decomposition is the same everywhere): what it
+  // sends to each is that rank's ghosts among its own spheres.
+  const auto me = static_cast<std::size_t>(d_.rank);
+  const Index lo = d_.sphere_offsets[me], hi = d_.sphere_offsets[me + 1];
+  send_bytes_.assign(1, 0);
+  receive_bytes_.assign(1, 0);
+  const std::vector<Index> mine = ghosts_of(net, d_, d_.rank, shared);
+  for (int r = 0; r < d_.ranks; ++r) {
+    const auto k = static_cast<std::size_t>(r);
+    if (r != d_.rank)
+      for (const Index i : ghosts_of(net, d_, r, shared))
+        if (i >= lo && i < hi) send_.push_back(i);
+    send_bytes_.push_back(static_cast<Index>(send_.size() * kGhostBytes));
+    for (const Index i : mine)
+      if (i >= d_.sphere_offsets[k] && i < d_.sphere_offsets[k + 1]) receive_.push_back(i);
+    receive_bytes_.push_back(static_cast<Index>(receive_.size() * kGhostBytes));
+  }
+  out_.resize(send_.size() * kGhostBytes);
+  in_.resize(receive_.size() * kGhostBytes);
+}
 
 RankMessage RankExchange::exchange(RankMessage m) const {
   const ExchangeTimer timer(*this);
@@ -46,12 +102,25 @@ void RankExchange::share_dissipation(ContactState& cs) const {
 
 void RankExchange::share_spheres(Bodies& b, BodyStepSums& sums) const {
   const ExchangeTimer timer(*this);
-  const std::vector<Index>& spheres = d_.sphere_offsets;
-  comm_->allgather(b.position, spheres);
-  comm_->allgather(b.velocity, spheres);
-  comm_->allgather(b.angular_velocity, spheres);
-  comm_->allgather(b.orientation, spheres);
-  comm_->allgather(b.angular_momentum, spheres);
+  std::uint8_t* o = out_.data();
+  for (const Index i : send_) {
+    std::memcpy(o, b.position[i].data(), sizeof(Vec3));
+    std::memcpy(o + 24, b.velocity[i].data(), sizeof(Vec3));
+    std::memcpy(o + 48, b.angular_velocity[i].data(), sizeof(Vec3));
+    std::memcpy(o + 72, b.orientation[i].coeffs().data(), sizeof(Quat));
+    std::memcpy(o + 104, b.angular_momentum[i].data(), sizeof(Vec3));
+    o += kGhostBytes;
+  }
+  comm_->all_to_all(out_, send_bytes_, in_, receive_bytes_);
+  const std::uint8_t* p = in_.data();
+  for (const Index i : receive_) {
+    std::memcpy(b.position[i].data(), p, sizeof(Vec3));
+    std::memcpy(b.velocity[i].data(), p + 24, sizeof(Vec3));
+    std::memcpy(b.angular_velocity[i].data(), p + 48, sizeof(Vec3));
+    std::memcpy(b.orientation[i].coeffs().data(), p + 72, sizeof(Quat));
+    std::memcpy(b.angular_momentum[i].data(), p + 104, sizeof(Vec3));
+    p += kGhostBytes;
+  }
   comm_->allgather(sums.blocks, sphere_blocks_);
 }
 

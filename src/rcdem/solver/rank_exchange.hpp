@@ -43,13 +43,17 @@ class RankExchange {
   friend class ExchangeTimer;
 
  public:
-  RankExchange(Communicator& comm, Decomposition d);
+  // `net`: the concrete network the decomposition splits; `shared`: the spheres every rank reads
+  // (those of the parts every rank evaluates: the bars' interfaces, the plates' contacts).
+  RankExchange(Communicator& comm, Decomposition d, const ContactNetwork& net,
+               const std::vector<Index>& shared);
   Communicator& comm() const { return *comm_; }
   const Decomposition& decomposition() const { return d_; }
   bool leader() const { return comm_->leader(); }
 
-  // After the integration: each rank's spheres (their motion and the integrator's block sums)
-  // to every rank, so that every rank holds every body's state as a serial run would.
+  // After the integration: each rank's spheres' motion to the ranks that read them (its ghosts
+  // elsewhere; rank 0, which writes every sphere, reads them all), and the integrator's block sums
+  // to every rank: each rank then holds what it reads as a serial run would.
   void share_spheres(Bodies& b, BodyStepSums& sums) const;
   // After the evaluation: each rank's dissipation sums (per block of the loop, or per contact
   // without condensation) to every rank, for the ledger.
@@ -76,6 +80,10 @@ class RankExchange {
   // The ranges in the loop's and the integrator's blocks; the crack log's messages (kept, so that
   // a step allocates nothing once they have grown).
   std::vector<Index> contact_blocks_, sphere_blocks_;
+  // The ghosts: the spheres this rank sends to each rank and receives from each, in rank order,
+  // and their byte offsets in the messages.
+  std::vector<Index> send_, receive_, send_bytes_, receive_bytes_;
+  mutable std::vector<std::uint8_t> out_, in_;
   mutable std::vector<std::uint8_t> mine_, all_;
   mutable double seconds_ = 0.0;
 };

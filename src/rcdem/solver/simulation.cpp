@@ -102,7 +102,12 @@ void Simulation::distribute(Communicator& comm) {
   concrete_.distribute(d, comm);
   const auto r = static_cast<std::size_t>(d.rank);
   integrator_.share_spheres(d.sphere_offsets[r], d.sphere_offsets[r + 1]);
-  exchange_ = std::make_unique<RankExchange>(comm, std::move(d));
+  // The spheres the parts every rank evaluates read: the bars' interfaces and the plates'.
+  std::vector<Index> shared;
+  for (const InterfaceContacts& in : specimen_.interfaces)
+    shared.insert(shared.end(), in.net.particle_a.begin(), in.net.particle_a.end());
+  shared.insert(shared.end(), plates_.contacts.particle.begin(), plates_.contacts.particle.end());
+  exchange_ = std::make_unique<RankExchange>(comm, std::move(d), specimen_.contacts, shared);
 }
 
 void Simulation::tell_ranks(RankCommand command, std::int64_t value) const {
