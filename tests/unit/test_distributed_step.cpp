@@ -191,6 +191,24 @@ TEST(DistributedStep, SameBitsAsOneSimulationOnTwoThreeAndFiveRanks) {
   }
 }
 
+TEST(Decomposition, RanksBeyondTheBlocksOwnAndEvaluateNothing) {
+  // The box on DistributedStep's 5 ranks: more ranks than blocks of particles, so some own empty
+  // ranges of particles and contacts, and evaluate no block.
+  const Scenario sc = box();
+  const Specimen sp = build_specimen(sc);
+  int idle = 0;
+  for (int r = 0; r < 5; ++r) {
+    const Decomposition d = Decomposition::build(sp.contacts, sp.concrete(), r, 5);
+    const auto k = static_cast<std::size_t>(r);
+    if (d.sphere_offsets[k] != d.sphere_offsets[k + 1] ||
+        d.contact_offsets[k] != d.contact_offsets[k + 1])
+      continue;
+    ++idle;
+    EXPECT_TRUE(d.evaluated_blocks.empty()) << "rank " << r;
+  }
+  EXPECT_GT(idle, 0);
+}
+
 TEST(Decomposition, RangesCoverEverythingOnceInWholeBlocks) {
   const Scenario sc = test::small_box();
   const Specimen sp = build_specimen(sc);

@@ -401,7 +401,7 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
   cs.size_blocks(in.net.contact_count(), kBlock);
   if (!cond) {
     parallel_for_listed_blocks(
-        cs.evaluated_blocks, in.net.contact_count(), kBlock, [&](Index begin, Index end) {
+        cs.evaluated(), in.net.contact_count(), kBlock, [&](Index begin, Index end) {
           PointTransitions sum;
           for (Index c = begin; c < end; ++c)
             note_transitions(cs, c, evaluate_contact(law, in, cs, cond, c), sum);
@@ -420,7 +420,7 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
     cs.block_friction.assign(static_cast<std::size_t>(blocks), 0.0);
   }
   parallel_for_listed_blocks(
-      cs.evaluated_blocks, in.net.contact_count(), kBlock, [&](Index begin, Index end) {
+      cs.evaluated(), in.net.contact_count(), kBlock, [&](Index begin, Index end) {
         CondensedBlock block;
         evaluate_condensed_block(ci, begin, end - begin, cs, block);
         // The contacts that go through their points form their frames first (by c - begin); the

@@ -55,10 +55,12 @@ struct ContactState {
   std::vector<PointTransitions> block_transitions;  // per block of the loop
   std::vector<std::uint8_t> newly_broken_contact;   // per contact, cleared by the tally
   // A distributed run's share (solver/decomposition.hpp): the loop's blocks this rank evaluates
-  // (all when empty), and those whose transitions it counts and logs, [counted_begin,
+  // (all unless `listed`), and those whose transitions it counts and logs, [counted_begin,
   // counted_end) (the others' flags are only cleared).
+  bool listed = false;
   std::vector<Index> evaluated_blocks;
   Index counted_begin = 0, counted_end = std::numeric_limits<Index>::max();
+  const std::vector<Index>* evaluated() const { return listed ? &evaluated_blocks : nullptr; }
   void size_blocks(Index contacts, Index block);
   void tally_transitions(Index block);  // the blocks' transitions into the totals and the log
   void recount();

@@ -39,21 +39,22 @@ void parallel_for_blocks(std::int64_t n, std::int64_t block, Body&& body) {
   }
 }
 
-// parallel_for_blocks over only the blocks listed in `blocks` (block numbers, ascending): a
-// distributed run's share of a loop (solver/decomposition.hpp); every block of n when empty.
+// parallel_for_blocks over only the blocks listed in `*blocks` (block numbers, ascending; none
+// may be listed): a distributed run's share of a loop (solver/decomposition.hpp); every block of n
+// when `blocks` is null.
 template <typename Body>
-void parallel_for_listed_blocks(const std::vector<std::int64_t>& blocks, std::int64_t n,
+void parallel_for_listed_blocks(const std::vector<std::int64_t>* blocks, std::int64_t n,
                                 std::int64_t block, Body&& body) {
-  if (blocks.empty()) {
+  if (!blocks) {
     parallel_for_blocks(n, block, body);
     return;
   }
-  const auto count = static_cast<std::int64_t>(blocks.size());
+  const auto count = static_cast<std::int64_t>(blocks->size());
 #if defined(_OPENMP)
 #pragma omp parallel for schedule(dynamic, 4) if (count * block >= kParallelMinItems)
 #endif
   for (std::int64_t k = 0; k < count; ++k) {
-    const std::int64_t begin = blocks[static_cast<std::size_t>(k)] * block;
+    const std::int64_t begin = (*blocks)[static_cast<std::size_t>(k)] * block;
     body(begin, begin + block < n ? begin + block : n);
   }
 }

@@ -58,6 +58,7 @@ void ConcreteContacts::catch_up(Real dt) const {
 void ConcreteContacts::distribute(const Decomposition& d, Communicator& comm) {
   comm_ = &comm;
   const auto r = static_cast<std::size_t>(d.rank);
+  contacts_.listed = true;
   contacts_.evaluated_blocks = d.evaluated_blocks;
   const std::vector<Index> blocks = d.contact_blocks(Decomposition::kContactBlock);
   contacts_.counted_begin = blocks[r];
@@ -136,7 +137,7 @@ void ConcreteContacts::add_strain_energy(Real& sum) const {
   }
   std::visit(
       [&](const auto& law) {
-        parallel_for_listed_blocks(own, n, kBlock, [&](Index begin, Index end) {
+        parallel_for_listed_blocks(comm_ ? &own : nullptr, n, kBlock, [&](Index begin, Index end) {
           // Condensed contacts from their sums at the last evaluation's kinematics (their
           // histories are stale), the others from their points.
           Real e = 0.0;
