@@ -29,16 +29,15 @@ namespace {
 constexpr std::size_t kGhostBytes = 3 * sizeof(Vec3) + sizeof(Quat) + sizeof(Vec3);
 static_assert(sizeof(Vec3) == 24 && sizeof(Quat) == 32, "the ghost message's layout");
 
-// The spheres rank r reads and does not advance, ascending: the ends of the contacts it
+// The spheres rank d.rank reads and does not advance, ascending: the ends of the contacts it
 // evaluates and the shared ones; rank 0 every sphere.
-std::vector<Index> ghosts_of(const ContactNetwork& net, const Decomposition& any, int r,
+std::vector<Index> ghosts_of(const ContactNetwork& net, const Decomposition& d,
                              const std::vector<Index>& shared) {
-  const Index spheres = any.sphere_offsets.back();
-  const auto k = static_cast<std::size_t>(r);
-  const Index lo = any.sphere_offsets[k], hi = any.sphere_offsets[k + 1];
-  std::vector<std::uint8_t> read(static_cast<std::size_t>(spheres), r == 0 ? 1 : 0);
-  if (r != 0) {
-    const Decomposition d = Decomposition::build(net, spheres, r, any.ranks);
+  const Index spheres = d.sphere_offsets.back();
+  const auto k = static_cast<std::size_t>(d.rank);
+  const Index lo = d.sphere_offsets[k], hi = d.sphere_offsets[k + 1];
+  std::vector<std::uint8_t> read(static_cast<std::size_t>(spheres), d.rank == 0 ? 1 : 0);
+  if (d.rank != 0) {
     for (const Index b : d.evaluated_blocks)
       for (Index c = b * Decomposition::kContactBlock;
            c < std::min(net.contact_count(), (b + 1) * Decomposition::kContactBlock); ++c) {
@@ -54,6 +53,29 @@ std::vector<Index> ghosts_of(const ContactNetwork& net, const Decomposition& any
   return out;
 }
 
+// Offsets [0, c0, c0 + c1, ...] of `counts` items of `unit` bytes each.
+std::vector<Index> byte_offsets(const std::vector<Index>& counts, std::size_t unit) {
+  std::vector<Index> out(1, 0);
+  for (const Index c : counts) out.push_back(out.back() + c * static_cast<Index>(unit));
+  return out;
+}
+
+// Every rank sends rank k its `items` [sum of count_out[< k], + count_out[k]) and receives
+// count_in[r] items from each rank r, in rank order.
+std::vector<Index> swap_indices(Communicator& comm, const std::vector<Index>& items,
+                                const std::vector<Index>& count_out,
+                                const std::vector<Index>& count_in) {
+  std::vector<std::uint8_t> out(items.size() * sizeof(Index));
+  if (!out.empty()) std::memcpy(out.data(), items.data(), out.size());
+  const std::vector<Index> to = byte_offsets(count_out, sizeof(Index));
+  const std::vector<Index> from = byte_offsets(count_in, sizeof(Index));
+  std::vector<std::uint8_t> in(static_cast<std::size_t>(from.back()));
+  comm.all_to_all(out, to, in, from);
+  std::vector<Index> got(in.size() / sizeof(Index));
+  if (!in.empty()) std::memcpy(got.data(), in.data(), in.size());
+  return got;
+}
+
 }  // namespace
 
 RankExchange::RankExchange(Communicator& comm, Decomposition d, const ContactNetwork& net,
@@ -62,23 +84,19 @@ RankExchange::RankExchange(Communicator& comm, Decomposition d, const ContactNet
       d_(std::move(d)),
       contact_blocks_(d_.contact_blocks(Decomposition::kContactBlock)),
       sphere_blocks_(d_.sphere_blocks(BodyStepSums::kSphereBlock)) {
-  // Each rank works out every rank's ghosts (the decomposition is the same everywhere): what it
-  // sends to each is that rank's ghosts among its own spheres.
-  const auto me = static_cast<std::size_t>(d_.rank);
-  const Index lo = d_.sphere_offsets[me], hi = d_.sphere_offsets[me + 1];
-  send_bytes_.assign(1, 0);
-  receive_bytes_.assign(1, 0);
-  const std::vector<Index> mine = ghosts_of(net, d_, d_.rank, shared);
-  for (int r = 0; r < d_.ranks; ++r) {
-    const auto k = static_cast<std::size_t>(r);
-    if (r != d_.rank)
-      for (const Index i : ghosts_of(net, d_, r, shared))
-        if (i >= lo && i < hi) send_.push_back(i);
-    send_bytes_.push_back(static_cast<Index>(send_.size() * kGhostBytes));
-    for (const Index i : mine)
-      if (i >= d_.sphere_offsets[k] && i < d_.sphere_offsets[k + 1]) receive_.push_back(i);
-    receive_bytes_.push_back(static_cast<Index>(receive_.size() * kGhostBytes));
+  // Each rank lists its ghosts (ascending, so grouped by their owners) and sends each owner the
+  // part it owns: what the owner then sends every step.
+  receive_ = ghosts_of(net, d_, shared);
+  std::vector<Index> asked(static_cast<std::size_t>(d_.ranks), 0);  // of each owner
+  for (const Index i : receive_) {
+    const auto next = std::upper_bound(d_.sphere_offsets.begin(), d_.sphere_offsets.end(), i);
+    ++asked[static_cast<std::size_t>(next - d_.sphere_offsets.begin() - 1)];
   }
+  const std::vector<Index> one(asked.size(), 1);
+  const std::vector<Index> giving = swap_indices(*comm_, asked, one, one);  // to each rank
+  send_ = swap_indices(*comm_, receive_, asked, giving);
+  receive_bytes_ = byte_offsets(asked, kGhostBytes);
+  send_bytes_ = byte_offsets(giving, kGhostBytes);
   out_.resize(send_.size() * kGhostBytes);
   in_.resize(receive_.size() * kGhostBytes);
 }
