@@ -34,7 +34,6 @@ RankMessage exchange(Communicator& comm, RankMessage m) {
 
 void RankGroup::start(const Scenario& sc) {
   exchange(*comm_, {RankCommand::Start, 0});
-  started_ = true;
   broadcast_text(*comm_, sc.text);
   broadcast_text(*comm_, sc.source.string());
 }

@@ -30,7 +30,7 @@ class RankGroup {
 
  private:
   Communicator* comm_;
-  bool started_ = false, finished_ = false;
+  bool finished_ = false;
 };
 
 // The other ranks' whole run: waits for rank 0's start, builds, follows; returns the exit code.
