@@ -72,12 +72,8 @@ void ConcreteContacts::distribute(const Decomposition& d, Communicator& comm) {
 void ConcreteContacts::scatter(Bodies& bodies) const {
   const ContactState& cs = contacts_;
   const BodyContacts& bc = body_contacts_;
-  // Distributed: this rank's spheres, then the bodies past every sphere (the bars' cylinders).
-  const Index first = scatter_begin_, own_end = comm_ ? scatter_spheres_end_ : bodies.size();
   const Index n = bodies.size();
-  const Index count = (own_end - first) + (comm_ ? n - spheres_ : 0);
-  parallel_for(count, [&](Index k) {
-    const Index i = first + k < own_end ? first + k : spheres_ + (k - (own_end - first));
+  const auto gather = [&](Index i) {
     // A body's B-side contacts belong to particles before it along the curve, some far before:
     // their forces are no longer in cache, and waiting on them was most of the gather. Requested
     // a few bodies ahead, they arrive while it sums (measured in bench/RESULTS.md). The A side
@@ -101,7 +97,15 @@ void ConcreteContacts::scatter(Bodies& bodies) const {
     }
     bodies.force[i] = f;
     bodies.torque[i] = t;
-  });
+  };
+  if (!comm_) {
+    parallel_for(n, gather);
+    return;
+  }
+  // Distributed: this rank's spheres, then the bodies past every sphere (the bars' cylinders).
+  const Index own = scatter_spheres_end_ - scatter_begin_;
+  parallel_for(own + (n - spheres_),
+               [&](Index k) { gather(k < own ? scatter_begin_ + k : spheres_ + (k - own)); });
 }
 
 void ConcreteContacts::add_dissipation(StepDissipation& d) const {
