@@ -60,10 +60,11 @@ void ConcreteContacts::distribute(const Decomposition& d, Communicator& comm) {
   const auto r = static_cast<std::size_t>(d.rank);
   contacts_.listed = true;
   contacts_.evaluated_blocks = d.evaluated_blocks;
-  const std::vector<Index> blocks = d.contact_blocks(Decomposition::kContactBlock);
+  const std::vector<Index> blocks =
+      Decomposition::in_blocks(d.contact_offsets, Decomposition::kContactBlock);
   contacts_.counted_begin = blocks[r];
   contacts_.counted_end = blocks[r + 1];
-  energy_block_offsets_ = d.contact_blocks(Decomposition::kEnergyBlock);
+  energy_block_offsets_ = Decomposition::in_blocks(d.contact_offsets, Decomposition::kEnergyBlock);
   scatter_begin_ = d.sphere_offsets[r];
   scatter_spheres_end_ = d.sphere_offsets[r + 1];
   spheres_ = d.sphere_offsets.back();
@@ -129,7 +130,7 @@ void ConcreteContacts::add_strain_energy(Real& sum) const {
   const ContactNetwork& net = *net_;
   const BodyKinematics& k = *kinematics_;
   const bool condensed = condensation_.any_condensed;
-  constexpr Index kBlock = 1024;
+  constexpr Index kBlock = Decomposition::kEnergyBlock;
   const Index n = net.contact_count();
   strain_energy_blocks_.assign(static_cast<std::size_t>((n + kBlock - 1) / kBlock), 0.0);
   // Distributed: this rank's blocks, then every rank's onto rank 0 (the others' sum is unused).

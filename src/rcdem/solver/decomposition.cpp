@@ -80,15 +80,9 @@ Index Decomposition::evaluated_points(const ContactNetwork& net) const {
   return points;
 }
 
-std::vector<Index> Decomposition::contact_blocks(Index block) const {
-  std::vector<Index> out(contact_offsets.size());
-  for (std::size_t r = 0; r < out.size(); ++r) out[r] = (contact_offsets[r] + block - 1) / block;
-  return out;
-}
-
-std::vector<Index> Decomposition::sphere_blocks(Index block) const {
-  std::vector<Index> out(sphere_offsets.size());
-  for (std::size_t r = 0; r < out.size(); ++r) out[r] = (sphere_offsets[r] + block - 1) / block;
+std::vector<Index> Decomposition::in_blocks(const std::vector<Index>& offsets, Index block) {
+  std::vector<Index> out(offsets.size());
+  for (std::size_t r = 0; r < out.size(); ++r) out[r] = (offsets[r] + block - 1) / block;
   return out;
 }
 

@@ -19,15 +19,17 @@
 // the local points (each contact counted with its first particle), the loop's work.
 #include <vector>
 
+#include "rcdem/contact/elastic_condensation.hpp"
 #include "rcdem/core/types.hpp"
+#include "rcdem/solver/body_step_sums.hpp"
 #include "rcdem/state/contact_network.hpp"
 
 namespace rcdem {
 
 struct Decomposition {
-  static constexpr Index kContactBlock = 128;  // CondensedBlock::kSize, the contact loop's
-  static constexpr Index kEnergyBlock = 1024;  // ConcreteContacts' strain energy blocks
-  static constexpr Index kSphereBlock = 128;   // BodyStepSums::kSphereBlock
+  static constexpr Index kContactBlock = CondensedBlock::kSize;  // the contact loop's
+  static constexpr Index kEnergyBlock = 1024;  // ConcreteContacts' strain energy sums
+  static constexpr Index kSphereBlock = BodyStepSums::kSphereBlock;  // the integrator's
 
   int rank = 0, ranks = 1;
   std::vector<Index> sphere_offsets;    // ranks + 1 entries
@@ -37,9 +39,8 @@ struct Decomposition {
   // For `spheres` concrete particles (bodies [0, spheres)) and their network.
   static Decomposition build(const ContactNetwork& net, Index spheres, int rank, int ranks);
 
-  // The same ranges in units of `block` (each offset a multiple of it, the last one rounded up).
-  std::vector<Index> contact_blocks(Index block) const;
-  std::vector<Index> sphere_blocks(Index block) const;
+  // `offsets` in units of `block` (each offset a multiple of it, the last one rounded up).
+  static std::vector<Index> in_blocks(const std::vector<Index>& offsets, Index block);
   // The local points of this rank's evaluated blocks (its share of the loop's work, the cut's
   // blocks included).
   Index evaluated_points(const ContactNetwork& net) const;

@@ -82,8 +82,8 @@ RankExchange::RankExchange(Communicator& comm, Decomposition d, const ContactNet
                            const std::vector<Index>& shared)
     : comm_(&comm),
       d_(std::move(d)),
-      contact_blocks_(d_.contact_blocks(Decomposition::kContactBlock)),
-      sphere_blocks_(d_.sphere_blocks(BodyStepSums::kSphereBlock)) {
+      contact_blocks_(Decomposition::in_blocks(d_.contact_offsets, Decomposition::kContactBlock)),
+      sphere_blocks_(Decomposition::in_blocks(d_.sphere_offsets, Decomposition::kSphereBlock)) {
   // Each rank lists its ghosts (ascending, so grouped by their owners) and sends each owner the
   // part it owns: what the owner then sends every step.
   receive_ = ghosts_of(net, d_, shared);

@@ -78,8 +78,10 @@ Simulation::Simulation(const Scenario& sc, Specimen specimen)
 }
 
 void Simulation::catch_up_condensed_points() const {
-  concrete_.catch_up(time_step_.dt);
-  if (!exchange_ || gathered_step_ == steps_) return;
+  if (!exchange_ || gathered_step_ == steps_) {
+    concrete_.catch_up(time_step_.dt);
+    return;
+  }
   tell_ranks(RankCommand::GatherState);
   // Logically const: rank 0's copy of the other ranks' share, brought up to date.
   const_cast<Simulation*>(this)->gather_state();
