@@ -435,7 +435,8 @@ bool RunLoop::run(const std::function<void(const Simulation&)>& on_step) {
     }
   }
   loop_end_ = std::chrono::steady_clock::now();
-  if (const RankExchange* x = sim_.exchange()) exchange_in_loop_ = x->seconds() - exchange_at_start_;
+  if (const RankExchange* x = sim_.exchange())
+    exchange_in_loop_ = x->seconds() - exchange_at_start_;
   progress.close();
   return true;
 }

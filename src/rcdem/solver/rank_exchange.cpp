@@ -30,23 +30,21 @@ constexpr std::size_t kGhostBytes = 3 * sizeof(Vec3) + sizeof(Quat) + sizeof(Vec
 static_assert(sizeof(Vec3) == 24 && sizeof(Quat) == 32, "the ghost message's layout");
 
 // The spheres rank d.rank reads and does not advance, ascending: the ends of the contacts it
-// evaluates and the shared ones; rank 0 every sphere.
+// evaluates and the shared ones.
 std::vector<Index> ghosts_of(const ContactNetwork& net, const Decomposition& d,
                              const std::vector<Index>& shared) {
   const Index spheres = d.sphere_offsets.back();
   const auto k = static_cast<std::size_t>(d.rank);
   const Index lo = d.sphere_offsets[k], hi = d.sphere_offsets[k + 1];
-  std::vector<std::uint8_t> read(static_cast<std::size_t>(spheres), d.rank == 0 ? 1 : 0);
-  if (d.rank != 0) {
-    for (const Index b : d.evaluated_blocks)
-      for (Index c = b * Decomposition::kContactBlock;
-           c < std::min(net.contact_count(), (b + 1) * Decomposition::kContactBlock); ++c) {
-        read[static_cast<std::size_t>(net.particle_a[c])] = 1;
-        read[static_cast<std::size_t>(net.particle_b[c])] = 1;
-      }
-    for (const Index i : shared)
-      if (i < spheres) read[static_cast<std::size_t>(i)] = 1;
-  }
+  std::vector<std::uint8_t> read(static_cast<std::size_t>(spheres), 0);
+  for (const Index b : d.evaluated_blocks)
+    for (Index c = b * Decomposition::kContactBlock;
+         c < std::min(net.contact_count(), (b + 1) * Decomposition::kContactBlock); ++c) {
+      read[static_cast<std::size_t>(net.particle_a[c])] = 1;
+      read[static_cast<std::size_t>(net.particle_b[c])] = 1;
+    }
+  for (const Index i : shared)
+    if (i < spheres) read[static_cast<std::size_t>(i)] = 1;
   std::vector<Index> out;
   for (Index i = 0; i < spheres; ++i)
     if (read[static_cast<std::size_t>(i)] && (i < lo || i >= hi)) out.push_back(i);
@@ -206,8 +204,28 @@ void RankExchange::gather_transitions(ContactState& cs, const ContactNetwork& ne
   }
 }
 
+void RankExchange::gather_motion(Bodies& b) const {
+  const ExchangeTimer timer(*this);
+  const std::vector<Index>& spheres = d_.sphere_offsets;
+  comm_->gather(b.position, spheres);
+  comm_->gather(b.velocity, spheres);
+  comm_->gather(b.angular_velocity, spheres);
+  comm_->gather(b.orientation, spheres);
+  comm_->gather(b.angular_momentum, spheres);
+}
+
+std::vector<Index> RankExchange::read_bodies(Index bodies) const {
+  const auto r = static_cast<std::size_t>(d_.rank);
+  std::vector<Index> out(receive_);
+  for (Index i = d_.sphere_offsets[r]; i < d_.sphere_offsets[r + 1]; ++i) out.push_back(i);
+  for (Index i = d_.sphere_offsets.back(); i < bodies; ++i) out.push_back(i);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 void RankExchange::gather_state(ContactState& cs, const ContactNetwork& net, Bodies& b,
                                 BodyStepSums& sums) const {
+  gather_motion(b);
   const ExchangeTimer timer(*this);
   const std::vector<Index>& contacts = d_.contact_offsets;
   comm_->gather(cs.normal, contacts);

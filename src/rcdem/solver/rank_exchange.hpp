@@ -14,13 +14,14 @@
 
 namespace rcdem {
 
-// What rank 0 asks of the others between steps (Simulation::follow serves the first four; the
-// run loop the rest).
+// What rank 0 asks of the others between steps (Simulation::follow serves Step to GatherMotion
+// and KeepStrainEnergy; the run loop the rest).
 enum class RankCommand : std::int64_t {
   Start = 1,  // the run loop's: the scenario follows; build the simulation
   Step,
   StrainEnergy,      // the ledger's strain energy (its concrete blocks gathered)
   GatherState,       // every contact, point and body state, onto rank 0
+  GatherMotion,      // every sphere's motion onto rank 0 (what its outputs read)
   KeepStrainEnergy,  // value: Simulation::keep_strain_energy_every's n
   Restore,           // the run loop's: a checkpoint's path follows
   Finish,            // the run ended: value 0, or 1 after an error rank 0 reports
@@ -52,8 +53,9 @@ class RankExchange {
   bool leader() const { return comm_->leader(); }
 
   // After the integration: each rank's spheres' motion to the ranks that read them (its ghosts
-  // elsewhere; rank 0, which writes every sphere, reads them all), and the integrator's block sums
-  // to every rank: each rank then holds what it reads as a serial run would.
+  // elsewhere), and the integrator's block sums to every rank: each rank then holds what it reads
+  // as a serial run would. Rank 0 reads only its ghosts too; what it writes it gathers on demand
+  // (gather_motion).
   void share_spheres(Bodies& b, BodyStepSums& sums) const;
   // After the evaluation: each rank's dissipation sums (per block of the loop, or per contact
   // without condensation) to every rank, for the ledger.
@@ -65,7 +67,12 @@ class RankExchange {
   // them. The other ranks' logs are emptied.
   void gather_transitions(ContactState& cs, const ContactNetwork& net,
                           const TallyMark& before) const;
-  // Every contact's and point's state, the bodies' forces and the per-body step sums onto rank 0.
+  // Every sphere's motion (position, velocity, spin, orientation, angular momentum) onto rank 0.
+  void gather_motion(Bodies& b) const;
+  // The bodies this rank's parts read: its own spheres, its ghosts, every bar cylinder (ascending).
+  std::vector<Index> read_bodies(Index bodies) const;
+  // Every contact's and point's state, the bodies' motion and forces and the per-body step sums
+  // onto rank 0.
   void gather_state(ContactState& cs, const ContactNetwork& net, Bodies& b,
                     BodyStepSums& sums) const;
   // Rank 0's message to every rank (the others receive it).

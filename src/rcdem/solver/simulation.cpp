@@ -87,10 +87,18 @@ void Simulation::catch_up_condensed_points() const {
   const_cast<Simulation*>(this)->gather_state();
 }
 
+void Simulation::catch_up_bodies() const {
+  if (!exchange_ || !exchange_->leader() || motion_step_ == steps_) return;
+  tell_ranks(RankCommand::GatherMotion);
+  // Logically const: rank 0's copy of the other ranks' spheres, brought up to date.
+  exchange_->gather_motion(const_cast<Bodies&>(bodies_));
+  motion_step_ = steps_;
+}
+
 void Simulation::gather_state() {
   concrete_.catch_up(time_step_.dt);
   exchange_->gather_state(concrete_.state(), specimen_.contacts, bodies_, integrator_.step_sums());
-  gathered_step_ = steps_;
+  gathered_step_ = motion_step_ = steps_;
 }
 
 void Simulation::distribute(Communicator& comm) {
@@ -110,6 +118,7 @@ void Simulation::distribute(Communicator& comm) {
     shared.insert(shared.end(), in.net.particle_a.begin(), in.net.particle_a.end());
   shared.insert(shared.end(), plates_.contacts.particle.begin(), plates_.contacts.particle.end());
   exchange_ = std::make_unique<RankExchange>(comm, std::move(d), specimen_.contacts, shared);
+  kinematics_.only = exchange_->read_bodies(bodies_.size());
 }
 
 void Simulation::tell_ranks(RankCommand command, std::int64_t value) const {
@@ -128,6 +137,9 @@ RankMessage Simulation::follow() {
         break;
       case RankCommand::GatherState:
         gather_state();
+        break;
+      case RankCommand::GatherMotion:
+        exchange_->gather_motion(bodies_);
         break;
       case RankCommand::KeepStrainEnergy:
         strain_energy_every_ = m.value;
@@ -169,6 +181,7 @@ bool Simulation::advance() {
   exchange_->share_spheres(bodies_, integrator_.step_sums());
   if (!integrator_.jumped()) return false;
   exchange_->share_jumps(integrator_.step_sums());
+  exchange_->gather_motion(bodies_);  // the message names the body's speed
   // Rank 0 reports it; the others wait for its RankCommand::Finish.
   return exchange_->leader();
 }

@@ -68,8 +68,16 @@ class Simulation {
   std::int64_t steps() const { return steps_; }
 
   const Specimen& specimen() const { return specimen_; }
-  Bodies& bodies() { return bodies_; }
-  const Bodies& bodies() const { return bodies_; }
+  // The bodies. Distributed, reading them first brings rank 0's copy of every sphere's motion up
+  // to date (the step sends it only the spheres it reads).
+  Bodies& bodies() {
+    catch_up_bodies();
+    return bodies_;
+  }
+  const Bodies& bodies() const {
+    catch_up_bodies();
+    return bodies_;
+  }
   // The concrete contacts' state. Reading it first brings the histories of contacts evaluated from
   // their sums up to date (contact/elastic_condensation.hpp): the points read as if every one had
   // been visited every step.
@@ -90,6 +98,9 @@ class Simulation {
   }
   // Brings condensed contacts' point histories up to the last step (contacts() does it).
   void catch_up_condensed_points() const;
+  // Rank 0 of a distributed run: every sphere's motion gathered from its owner, once per step
+  // (bodies() does it).
+  void catch_up_bodies() const;
   std::vector<Plate>& plates() { return plates_.plates; }
   const std::vector<Plate>& plates() const { return plates_.plates; }
   const PlateContacts& plate_contacts() const { return plates_.contacts; }
@@ -193,6 +204,8 @@ class Simulation {
   Energy energy_;
   std::unique_ptr<RankExchange> exchange_;  // distributed runs only
   std::int64_t gathered_step_ = -1;         // the step whose state rank 0 last gathered
+  // The step whose motion rank 0 last gathered: at 0 (and after a restore) every rank holds it.
+  mutable std::int64_t motion_step_ = 0;
 };
 
 }  // namespace rcdem

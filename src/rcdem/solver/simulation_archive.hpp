@@ -27,6 +27,8 @@ void Simulation::serialize(Archive& ar, Self& s) {
   ar.record("solver", s.time_, s.steps_, s.time_step_.dt, s.integrator_.damping_ref(),
             e.external_work, e.strain, e.kinetic, e.damage, e.friction, e.damping, e.plastic);
   LoadingRate::serialize(ar, s.loading_rate_);
+  // Restored, every rank holds the whole state the file held: nothing to gather at this step.
+  if constexpr (!std::is_const_v<Self>) s.motion_step_ = s.steps_;
 }
 
 }  // namespace rcdem

@@ -18,8 +18,8 @@
 
 #include "rcdem/core/types.hpp"
 #include "rcdem/state/bodies.hpp"
-#include "rcdem/state/contact_network.hpp"
 #include "rcdem/state/body_poses.hpp"
+#include "rcdem/state/contact_network.hpp"
 
 namespace rcdem {
 
@@ -31,6 +31,10 @@ struct BodyKinematics {
   std::vector<Vec3> position, position_prev;
   std::vector<Eigen::Matrix3d> rotation, rotation_prev;
   BodyPoses pose;  // the same with the centres, for the condensed contacts' kernel
+
+  // The bodies a distributed rank's parts read (RankExchange::read_bodies): only theirs are
+  // formed; empty: every body.
+  std::vector<Index> only;
 
   explicit BodyKinematics(const Bodies& bodies);
   // Keeps the current as the previous and forms the current from `bodies`.
