@@ -17,7 +17,9 @@
 #   Per run: the loop's steps/s (summary.json loop_seconds: the steps alone), the set-up's seconds
 #   (generation, tessellation, time step), rank 0's share of the loop spent in exchanges and of
 #   the local points it evaluates, the machine's peak memory in use (MemAvailable sampled every
-#   0.5 s), and whether history.csv is the same bytes as the specimen's first set-up's. A set-up
+#   0.5 s), and whether history.csv is the same bytes as the specimen's first set-up's; every
+#   rank's exchange share (the least waiting rank is the one the others wait for) and rank 0's by
+#   kind (command, dissipation, crack_log, spheres, requests). A set-up
 #   that would start after DEADLINE_S seconds of the script is skipped (default 450).
 #   Output: OUT_DIR/device_mpi_scaling.txt (key=value lines) and mpi_scaling.csv.
 set -uo pipefail
@@ -49,7 +51,7 @@ say "nproc=$(nproc) cpu=\"$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2- |
     "mem_GiB=$((TOTAL_KIB / 1048576))"
 say "$("$RCDEM" --version 2>&1 | head -1)"
 say "launcher: $("$MPIRUN" --version 2>&1 | head -1)"
-echo "specimen,round,ranks,threads,steps,steps_per_s,setup_s,exchange_share,rank0_points_share,peak_mem_GiB,same_history" > "$CSV"
+echo "specimen,round,ranks,threads,steps,steps_per_s,setup_s,exchange_share,rank0_points_share,peak_mem_GiB,same_history,least_waiting_rank_share,most_waiting_rank_share,rank0_kinds" > "$CSV"
 
 # run NAME SCENARIO RANKS THREADS ROUND STEPS [--set ...]: one run, one result line.
 run() {
@@ -96,13 +98,20 @@ setup = s["seconds"] - loop
 x = d.get("rank_0_exchange_seconds", 0.0) / loop
 pts = d.get("rank_0_evaluated_points", s["local_points"]) / s["local_points"]
 mem = int(mem_kib) / 1048576
+# Every rank's exchange share (summary.json's exchange_seconds_by_rank): the rank that waits least is the one
+# the others wait for; rank 0's by kind says where its share goes.
+by_rank = [sum(r.values()) / loop for r in d.get("exchange_seconds_by_rank", [])]
+least = min(by_rank) if by_rank else 0.0
+most = max(by_rank) if by_rank else 0.0
+kinds = ";".join(f"{k}:{v / loop:.3f}" for k, v in d.get("exchange_seconds_by_rank", [{}])[0].items())
 print(f"specimen={name} round={rnd} ranks={ranks} threads={threads} steps={s['steps']} "
       f"steps_per_s={sps:.2f} setup_s={setup:.1f} exchange_share={x:.3f} "
       f"rank0_points_share={pts:.3f} peak_mem_GiB={mem:.1f} same_history={same} "
-      f"local_points={s['local_points']} particles={s['specimen'].get('particles', {}).get('total', '')}")
+      f"local_points={s['local_points']} particles={s['specimen'].get('particles', {}).get('total', '')} "
+      f"least_waiting_rank_share={least:.3f} most_waiting_rank_share={most:.3f} rank0_kinds={kinds}")
 with open(csv, "a") as f:
     f.write(f"{name},{rnd},{ranks},{threads},{s['steps']},{sps:.3f},{setup:.2f},{x:.4f},"
-            f"{pts:.4f},{mem:.2f},{same}\n")
+            f"{pts:.4f},{mem:.2f},{same},{least:.4f},{most:.4f},{kinds}\n")
 PY
   rm -rf "$out"
 }

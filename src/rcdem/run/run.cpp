@@ -206,6 +206,24 @@ namespace {
 // Snapshots expected to take more than this (bytes) are announced at the set-up.
 constexpr double kLargeOutputBytes = 1e9;
 
+double exchange_total(const std::vector<ExchangeSeconds>& by_rank, std::size_t rank) {
+  double total = 0.0;
+  if (rank < by_rank.size())
+    for (const double t : by_rank[rank]) total += t;
+  return total;
+}
+
+// summary.json's exchange_seconds_by_rank: one object per rank, its seconds by kind.
+nlohmann::ordered_json exchange_json(const std::vector<ExchangeSeconds>& by_rank) {
+  nlohmann::ordered_json all = nlohmann::ordered_json::array();
+  for (const ExchangeSeconds& rank : by_rank) {
+    nlohmann::ordered_json one;
+    for (std::size_t k = 0; k < rank.size(); ++k) one[kExchangeKindNames[k]] = rank[k];
+    all.push_back(one);
+  }
+  return all;
+}
+
 // How many steps the run will take, where a rule tells: for the history and snapshot spacing and
 // the progress line.
 Real expected_steps(const Scenario& sc, const Simulation& sim, const TestMeasures& control) {
@@ -276,9 +294,9 @@ class RunLoop {
   // The loop's end: the final files (a last snapshot, history.csv, broken_points.csv) are the
   // run's output, not its loop (summary.json's loop_seconds).
   std::chrono::steady_clock::time_point loop_start_, loop_end_, last_checkpoint_;
-  // A distributed run's exchange time inside this session's loop: the set-up's waits for the
-  // slowest rank's generation are not the step's cost.
-  double exchange_at_start_ = 0.0, exchange_in_loop_ = 0.0;
+  // A distributed run's exchange times inside this session's loop, by rank and kind: the set-up's
+  // waits for the slowest rank's generation are not the step's cost.
+  std::vector<ExchangeSeconds> exchange_by_rank_;
   std::int64_t checkpointed_step_ = -1;
   fs::path last_checkpoint_file_;
   std::string stop_reason_;
@@ -403,7 +421,7 @@ bool RunLoop::run(const std::function<void(const Simulation&)>& on_step) {
   ProgressLine progress(expected_, peak);
   const auto rules = stop_rules(sc_, peak);
   loop_start_ = last_checkpoint_ = std::chrono::steady_clock::now();
-  if (const RankExchange* x = sim_.exchange()) exchange_at_start_ = x->seconds();
+  if (const RankExchange* x = sim_.exchange()) x->reset_seconds();
   session_.signals().loop();
   for (;;) {
     const auto [load, displacement] = step_once();
@@ -435,8 +453,7 @@ bool RunLoop::run(const std::function<void(const Simulation&)>& on_step) {
     }
   }
   loop_end_ = std::chrono::steady_clock::now();
-  if (const RankExchange* x = sim_.exchange())
-    exchange_in_loop_ = x->seconds() - exchange_at_start_;
+  if (sim_.exchange()) exchange_by_rank_ = sim_.exchange_seconds_by_rank();
   progress.close();
   return true;
 }
@@ -596,7 +613,8 @@ nlohmann::ordered_json RunLoop::summary_json(const RunSummary& r, double wall, d
   if (const RankExchange* x = sim_.exchange())  // a distributed run (docs/parallel.md)
     j["distributed"] = {
         {"ranks", x->comm().size()},
-        {"rank_0_exchange_seconds", exchange_in_loop_},
+        {"rank_0_exchange_seconds", exchange_total(exchange_by_rank_, 0)},
+        {"exchange_seconds_by_rank", exchange_json(exchange_by_rank_)},
         {"rank_0_evaluated_points", x->decomposition().evaluated_points(sim_.specimen().contacts)}};
   j["rcdem"] = {{"version", build_version()},
                 {"git_hash", build_git_hash()},

@@ -10,15 +10,18 @@ namespace rcdem {
 // Adds the wall time of its scope to the exchange's.
 class ExchangeTimer {
  public:
-  explicit ExchangeTimer(const RankExchange& x) : x_(x), start_(std::chrono::steady_clock::now()) {}
+  ExchangeTimer(const RankExchange& x, ExchangeKind kind)
+      : x_(x), kind_(static_cast<std::size_t>(kind)), start_(std::chrono::steady_clock::now()) {}
   ~ExchangeTimer() {
-    x_.seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    x_.seconds_[kind_] +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   }
   ExchangeTimer(const ExchangeTimer&) = delete;
   ExchangeTimer& operator=(const ExchangeTimer&) = delete;
 
  private:
   const RankExchange& x_;
+  std::size_t kind_;
   std::chrono::steady_clock::time_point start_;
 };
 
@@ -100,13 +103,13 @@ RankExchange::RankExchange(Communicator& comm, Decomposition d, const ContactNet
 }
 
 RankMessage RankExchange::exchange(RankMessage m) const {
-  const ExchangeTimer timer(*this);
+  const ExchangeTimer timer(*this, ExchangeKind::Command);
   comm_->broadcast(m);
   return m;
 }
 
 void RankExchange::share_dissipation(ContactState& cs) const {
-  const ExchangeTimer timer(*this);
+  const ExchangeTimer timer(*this, ExchangeKind::Dissipation);
   if (!cs.block_damage.empty()) {
     comm_->allgather(cs.block_damage, contact_blocks_);
     comm_->allgather(cs.block_friction, contact_blocks_);
@@ -117,7 +120,7 @@ void RankExchange::share_dissipation(ContactState& cs) const {
 }
 
 void RankExchange::share_spheres(Bodies& b, BodyStepSums& sums) const {
-  const ExchangeTimer timer(*this);
+  const ExchangeTimer timer(*this, ExchangeKind::Spheres);
   std::uint8_t* o = out_.data();
   for (const Index i : send_) {
     std::memcpy(o, b.position[i].data(), sizeof(Vec3));
@@ -141,7 +144,23 @@ void RankExchange::share_spheres(Bodies& b, BodyStepSums& sums) const {
 }
 
 void RankExchange::share_jumps(BodyStepSums& sums) const {
+  const ExchangeTimer timer(*this, ExchangeKind::Spheres);
   comm_->allgather(sums.jumped, d_.sphere_offsets);
+}
+
+double RankExchange::seconds() const {
+  double total = 0.0;
+  for (const double t : seconds_) total += t;
+  return total;
+}
+
+std::vector<ExchangeSeconds> RankExchange::gather_seconds() const {
+  std::vector<ExchangeSeconds> all(static_cast<std::size_t>(comm_->size()));
+  all[static_cast<std::size_t>(comm_->rank())] = seconds_;
+  std::vector<Index> one_each(all.size() + 1);
+  for (std::size_t r = 0; r < one_each.size(); ++r) one_each[r] = static_cast<Index>(r);
+  comm_->gather(all, one_each);
+  return all;
 }
 
 namespace {
@@ -165,7 +184,7 @@ T take(const std::uint8_t*& p) {
 
 void RankExchange::gather_transitions(ContactState& cs, const ContactNetwork& net,
                                       const TallyMark& before) const {
-  const ExchangeTimer timer(*this);
+  const ExchangeTimer timer(*this, ExchangeKind::CrackLog);
   // Each rank's message: its counters' changes, its new log entries, their points' records.
   std::vector<std::uint8_t>& mine = mine_;
   mine.clear();
@@ -205,7 +224,7 @@ void RankExchange::gather_transitions(ContactState& cs, const ContactNetwork& ne
 }
 
 void RankExchange::gather_motion(Bodies& b) const {
-  const ExchangeTimer timer(*this);
+  const ExchangeTimer timer(*this, ExchangeKind::Requests);
   const std::vector<Index>& spheres = d_.sphere_offsets;
   comm_->gather(b.position, spheres);
   comm_->gather(b.velocity, spheres);
@@ -226,7 +245,7 @@ std::vector<Index> RankExchange::read_bodies(Index bodies) const {
 void RankExchange::gather_state(ContactState& cs, const ContactNetwork& net, Bodies& b,
                                 BodyStepSums& sums) const {
   gather_motion(b);
-  const ExchangeTimer timer(*this);
+  const ExchangeTimer timer(*this, ExchangeKind::Requests);
   const std::vector<Index>& contacts = d_.contact_offsets;
   comm_->gather(cs.normal, contacts);
   comm_->gather(cs.tangent, contacts);

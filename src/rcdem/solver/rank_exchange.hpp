@@ -3,7 +3,9 @@
 // solver/decomposition.hpp's): every step, the spheres each rank moved and its contacts' crack
 // record; on rank 0's request, the whole state it writes (snapshots, checkpoints). Every call is
 // collective (core/communicator.hpp).
+#include <array>
 #include <cstdint>
+#include <vector>
 
 #include "rcdem/contact/contact_state.hpp"
 #include "rcdem/core/communicator.hpp"
@@ -22,6 +24,7 @@ enum class RankCommand : std::int64_t {
   StrainEnergy,      // the ledger's strain energy (its concrete blocks gathered)
   GatherState,       // every contact, point and body state, onto rank 0
   GatherMotion,      // every sphere's motion onto rank 0 (what its outputs read)
+  ExchangeTimes,     // every rank's RankExchange::seconds_by_kind onto rank 0
   KeepStrainEnergy,  // value: Simulation::keep_strain_energy_every's n
   Restore,           // the run loop's: a checkpoint's path follows
   Finish,            // the run ended: value 0, or 1 after an error rank 0 reports
@@ -39,6 +42,14 @@ struct TallyMark {
     return {cs.damaged_or_broken, cs.broken, cs.broken_contact_log.size()};
   }
 };
+
+// What a rank's exchange time is spent on: rank 0's commands, the dissipation sums, the crack
+// log, the ghosts and the integrator's sums, rank 0's requests for the motion and the state (the
+// strain energy's block sums are gathered by the concrete contacts themselves: not counted).
+enum class ExchangeKind { Command, Dissipation, CrackLog, Spheres, Requests, Count };
+inline constexpr const char* kExchangeKindNames[] = {"command", "dissipation", "crack_log",
+                                                     "spheres", "requests"};
+using ExchangeSeconds = std::array<double, static_cast<std::size_t>(ExchangeKind::Count)>;
 
 class RankExchange {
   friend class ExchangeTimer;
@@ -78,8 +89,12 @@ class RankExchange {
   // Rank 0's message to every rank (the others receive it).
   RankMessage exchange(RankMessage m) const;
   // Wall time this rank has spent in the step's exchanges (waiting for the others included) and
-  // in rank 0's requests.
-  double seconds() const { return seconds_; }
+  // in rank 0's requests since the last reset, in all and by kind.
+  double seconds() const;
+  const ExchangeSeconds& seconds_by_kind() const { return seconds_; }
+  void reset_seconds() const { seconds_.fill(0.0); }
+  // Every rank's seconds_by_kind, in rank order, on rank 0 (collective).
+  std::vector<ExchangeSeconds> gather_seconds() const;
 
  private:
   Communicator* comm_;
@@ -92,7 +107,7 @@ class RankExchange {
   std::vector<Index> send_, receive_, send_bytes_, receive_bytes_;
   mutable std::vector<std::uint8_t> out_, in_;
   mutable std::vector<std::uint8_t> mine_, all_;
-  mutable double seconds_ = 0.0;
+  mutable ExchangeSeconds seconds_{};
 };
 
 }  // namespace rcdem

@@ -121,16 +121,29 @@ void Simulation::distribute(Communicator& comm) {
   kinematics_.only = exchange_->read_bodies(bodies_.size());
 }
 
+std::vector<ExchangeSeconds> Simulation::exchange_seconds_by_rank() const {
+  tell_ranks(RankCommand::ExchangeTimes);
+  return exchange_->gather_seconds();
+}
+
 void Simulation::tell_ranks(RankCommand command, std::int64_t value) const {
   if (exchange_ && exchange_->leader()) exchange_->exchange({command, value});
 }
 
 RankMessage Simulation::follow() {
+  bool stepped = false;
   for (;;) {
     const RankMessage m = exchange_->exchange({});
     switch (m.command) {
       case RankCommand::Step:
+        // The exchange times count from the loop's first step, as rank 0's do (the set-up's
+        // waits for rank 0 are not the step's cost).
+        if (!stepped) exchange_->reset_seconds();
+        stepped = true;
         step();
+        break;
+      case RankCommand::ExchangeTimes:
+        (void)exchange_->gather_seconds();
         break;
       case RankCommand::StrainEnergy:
         (void)strain_energy();

@@ -39,8 +39,9 @@ class Simulation {
 
   // A distributed run (docs/parallel.md): from now on this rank steps its share of the simulation
   // (solver/decomposition.hpp) and exchanges the rest through `comm`, which must outlive it. Rank
-  // 0 then drives the others: step, strain_energy, catch_up_condensed_points and
-  // keep_strain_energy_every first send them the same request; the others call follow().
+  // 0 then drives the others: step, strain_energy, catch_up_condensed_points, bodies,
+  // keep_strain_energy_every and exchange_seconds_by_rank first send them the same request; the
+  // others call follow().
   void distribute(Communicator& comm);
   // A rank other than 0: serves rank 0's requests until one it does not serve, which it returns
   // (RankCommand::Restore, Finish).
@@ -48,6 +49,8 @@ class Simulation {
   // Rank 0's message to the other ranks (nothing when not distributed or on another rank).
   void tell_ranks(RankCommand command, std::int64_t value = 0) const;
   const RankExchange* exchange() const { return exchange_.get(); }
+  // Rank 0: every rank's exchange time by kind since its loop's first step (collective).
+  std::vector<ExchangeSeconds> exchange_seconds_by_rank() const;
 
   // The estimate the time step is a safety factor of (SPEC 6), with the masses after any
   // selective mass scaling: min over bodies of sqrt(m / sum k) and its rotational analogue
