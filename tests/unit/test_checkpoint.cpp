@@ -7,12 +7,14 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <map>
 #include <random>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -408,7 +410,8 @@ TEST(Checkpoint, StateDoesNotDependOnThreadCount) {
   replace("velocity = -0.5", "velocity = -2.0");
   replace("ramp_time = 5.0e-5", "ramp_time = 2.0e-5");
   // With the assembled critical step, whose operator runs in parallel: the same step too.
-  replace("preset = \"basic\"", "preset = \"basic\"\ntime_step_estimate = \"assembled\"\ndt_safety = 0.8");
+  replace("preset = \"basic\"",
+          "preset = \"basic\"\ntime_step_estimate = \"assembled\"\ndt_safety = 0.8");
   const Scenario sc = parse_scenario(text, "cube100.toml");
   const Specimen specimen = build_specimen(sc);
   ASSERT_GT(specimen.contacts.contact_count(), 2048);
@@ -548,4 +551,84 @@ TEST(Checkpoint, ReadsTheFormatBefore) {
   EXPECT_EQ(lb.displacement_at_peak, 1e-4);
   EXPECT_EQ(lb.history_every, 30);
   EXPECT_EQ(difference(io::encode_checkpoint(pb, 5), v5), "");
+}
+
+// Issue 46 (HDF5 checkpoints need it): every column of every section is named, with its SI unit,
+// its words add up to the section's width, and docs/checkpoint.md's layout table lists it.
+// RCDEM_PRINT_LAYOUT=1 prints that table's rows (the way to regenerate it).
+void check_layout(const io::CheckpointParts& parts, std::set<std::string>& printed) {
+  auto sections = section_table(io::encode_checkpoint(parts, 3));
+  const std::vector<io::CheckpointColumn> layout = io::checkpoint_layout(parts);
+  const std::string docs = read_file(fs::path(RCDEM_SOURCE_DIR) / "docs/checkpoint.md");
+  const std::set<std::string> units = {"m",   "m^2", "m/s", "rad", "rad/s", "kg*m^2/s", "N",
+                                       "N*m", "N/m", "J",   "s",   "1",     "-"};
+  std::map<std::string, std::uint32_t> words;  // of the sections of words (not text, not rows)
+  std::set<std::pair<std::string, std::string>> seen;
+  for (const io::CheckpointColumn& c : layout) {
+    ASSERT_TRUE(sections.count(c.section)) << c.section;
+    EXPECT_TRUE(seen.insert({c.section, c.name}).second) << c.section << " " << c.name;
+    const bool text = c.name == "text" || c.name == "bytes" || c.name == "row";
+    if (!text) words[c.section] += c.words;
+    EXPECT_FALSE(c.name.empty()) << c.section;
+    if (!text)
+      EXPECT_TRUE(units.count(c.unit)) << c.section << "." << c.name << ": '" << c.unit << "'";
+    std::string section = c.section;
+    if (section.rfind("interface.0", 0) == 0) section.replace(10, 1, "<bar>");
+    const std::string width = c.name == "row" ? "one per history column"
+                              : text          ? "–"
+                                              : std::to_string(c.words);
+    const std::string row = fmt::format("| `{}` | `{}` | {} | {} |", section, c.name,
+                                        c.unit.empty() ? "–" : c.unit, width);
+    if (std::getenv("RCDEM_PRINT_LAYOUT") && printed.insert(row).second) fmt::print("{}\n", row);
+    EXPECT_NE(docs.find(row), std::string::npos) << "docs/checkpoint.md lacks the row " << row;
+  }
+  for (const auto& [name, w] : words) EXPECT_EQ(w, sections[name].width) << name;
+}
+
+TEST(Checkpoint, EveryColumnIsNamedWithItsUnitAndDocumented) {
+  std::set<std::string> printed;
+  {  // bodies, contacts, a bar's interface and nodes, plates, and the run loop's parts
+    const Scenario sc = small_run();
+    Simulation sim(sc, build_specimen(sc));
+    io::History history(sim, sc);
+    TempDir dir;
+    io::SnapshotWriter snapshots(dir.path(), false, true);
+    io::CrackRecord cracks(sim);
+    io::LoopState loop;
+    for (int i = 0; i < 20; ++i) sim.step();
+    history.record(sim);
+    check_layout({&sim, &history, &snapshots, &cracks, &loop}, printed);
+  }
+  {  // a pulled bar
+    const Scenario sc = pull_out();
+    Simulation sim(sc, build_specimen(sc));
+    sim.step();
+    check_layout({&sim}, printed);
+  }
+  {  // a plate's loading program
+    const Scenario sc = parse_scenario(R"(
+[specimen]
+shape = "box"
+size = [0.04, 0.04, 0.04]
+[generation]
+seed = 2
+relaxation_iterations = 100
+[solver]
+preset = "basic"
+[plates.bottom]
+face = "z-"
+[plates.top]
+face = "z+"
+[plates.top.program.press]
+kind = "displacement"
+target = -0.0001
+speed = 0.05
+[loading]
+control_plate = "top"
+)",
+                                       "program_box.toml");
+    Simulation sim(sc, build_specimen(sc));
+    sim.step();
+    check_layout({&sim}, printed);
+  }
 }

@@ -86,10 +86,12 @@ struct ContactState {
   // The checkpoint's sections `name` (per contact) and `name`.points (core/archive.hpp).
   template <class Archive, class Self>
   static void serialize(Archive& ar, const std::string& name, Self& c) {
-    ar.table(name, c.normal.size(), column(c.normal), column(c.tangent), column(c.force_b),
-             column(c.torque_b), column(c.torque_a), column(c.dissipated_damage),
-             column(c.dissipated_friction));
-    ar.table(name + ".points", c.point.records.size(), column(c.point.records));
+    ar.table(name, c.normal.size(), column("normal", "1", c.normal),
+             column("tangent", "1", c.tangent), column("force_b", "N", c.force_b),
+             column("torque_b", "N*m", c.torque_b), column("torque_a", "N*m", c.torque_a),
+             column("dissipated_damage", "J", c.dissipated_damage),
+             column("dissipated_friction", "J", c.dissipated_friction));
+    ar.table(name + ".points", c.point.records.size(), column("record", "", c.point.records));
     if constexpr (Archive::loading)
       if (ar.applying()) c.recount();
   }

@@ -10,7 +10,8 @@
 #include <vector>
 
 #include "rcdem/contact/laws/law_registry.hpp"  // PointHistory
-#include "rcdem/state/body_poses.hpp"           // AlignedAllocator
+#include "rcdem/core/archive.hpp"
+#include "rcdem/state/body_poses.hpp"  // AlignedAllocator
 #include "rcdem/state/contact_network.hpp"
 
 namespace rcdem {
@@ -33,9 +34,7 @@ static_assert(sizeof(LocalPointRecord) == 128, "a record is two cache lines");
 // constants come with the regenerated specimen.
 template <class Record, class R>
 requires std::same_as<std::remove_const_t<R>, LocalPointRecord>
-void archive_fields(Record& r, R& p) {
-  r.put(p.history);
-}
+void archive_fields(Record& r, R& p) { r.put(named("history", "", p.history)); }
 
 // The damage of every point, read in place (outputs, counters).
 struct PointDamage {
@@ -79,6 +78,10 @@ struct LocalPointRecords {
   template <typename F>
   struct Each {
     F& f;
+    template <typename T>
+    void put(Named<T> n) {
+      put(n.value);
+    }
     template <typename T>
     void put(T& v) {
       if constexpr (std::is_arithmetic_v<std::remove_const_t<T>>)

@@ -20,6 +20,7 @@
 #include <concepts>
 #include <type_traits>
 
+#include "rcdem/core/archive.hpp"
 #include "rcdem/core/types.hpp"
 #include "rcdem/reinforcement/rigid_cylinder.hpp"
 #include "rcdem/state/bodies.hpp"
@@ -94,25 +95,25 @@ struct NodeForces {
 template <class Record, class S>
 requires std::same_as<std::remove_const_t<S>, NodeState>
 void archive_fields(Record& r, S& n) {
-  r.put(n.axial_force);
-  r.put(n.shear_force);
-  r.put(n.bending_moment);
-  r.put(n.twisting_moment);
-  r.put(n.plastic_elongation);
-  r.put(n.yielded);
-  r.put(n.displacement);
-  r.put(n.rotation);
+  r.put(named("axial_force", "N", n.axial_force));
+  r.put(named("shear_force", "N", n.shear_force));
+  r.put(named("bending_moment", "N*m", n.bending_moment));
+  r.put(named("twisting_moment", "N*m", n.twisting_moment));
+  r.put(named("plastic_elongation", "m", n.plastic_elongation));
+  r.put(named("yielded", "-", n.yielded));
+  r.put(named("displacement", "m", n.displacement));
+  r.put(named("rotation", "rad", n.rotation));
 }
 template <class Record, class F>
 requires std::same_as<std::remove_const_t<F>, NodeForces>
 void archive_fields(Record& r, F& f) {
-  r.put(f.force_a);
-  r.put(f.torque_a);
-  r.put(f.force_b);
-  r.put(f.torque_b);
-  r.put(f.position);
-  r.put(f.axis);
-  r.put(f.dissipated);
+  r.put(named("force_a", "N", f.force_a));
+  r.put(named("torque_a", "N*m", f.torque_a));
+  r.put(named("force_b", "N", f.force_b));
+  r.put(named("torque_b", "N*m", f.torque_b));
+  r.put(named("position", "m", f.position));
+  r.put(named("axis", "1", f.axis));
+  r.put(named("dissipated", "J", f.dissipated));
 }
 
 // A node joining the material points of A and B at point_a and point_b (world, t = 0, distinct):

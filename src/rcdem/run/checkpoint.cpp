@@ -100,6 +100,13 @@ void walk(Archive& ar, const CheckpointParts& p) {
 
 }  // namespace
 
+std::vector<CheckpointColumn> checkpoint_layout(const CheckpointParts& parts) {
+  std::vector<CheckpointColumn> out;
+  Describer d(out);
+  walk(d, parts);
+  return out;
+}
+
 std::uint64_t specimen_fingerprint(const Simulation& s) {
   Out o;
   const Specimen& sp = s.specimen();
@@ -208,8 +215,8 @@ std::string read_checked(int fd) {
   const std::size_t got = read_fully(fd, head, sizeof head);
   if (got == sizeof head && std::memcmp(head, kCheckpointMagic, 8) != 0)
     throw Reject{"not an rcdem checkpoint (it does not start with 'RCDEMCKP')"};
-  const double memory = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) *
-                        static_cast<double>(::sysconf(_SC_PAGESIZE));
+  const double memory =
+      static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGESIZE));
   if (memory > 0.0 && static_cast<double>(st.st_size) > 0.5 * memory)
     throw Reject{fmt::format("{} bytes, more than half of this machine's memory", st.st_size)};
   std::string data;

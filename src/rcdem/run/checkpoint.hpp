@@ -17,6 +17,8 @@
 #include <string_view>
 #include <vector>
 
+#include "rcdem/core/archive.hpp"
+
 namespace rcdem {
 class Simulation;
 }
@@ -60,13 +62,23 @@ struct LoopState {
     if constexpr (Archive::loading) {
       if (ar.version() == 4) {
         double peak_again = 0.0;
-        ar.record("run", l.peak, peak_again, l.displacement_at_peak, l.kinetic_over_strain_at_peak,
-                  l.wall_seconds, l.loop_seconds, l.history_every, l.snapshot_every);
+        ar.record("run", named("peak", "N", l.peak), named("peak_again", "N", peak_again),
+                  named("displacement_at_peak", "m", l.displacement_at_peak),
+                  named("kinetic_over_strain_at_peak", "1", l.kinetic_over_strain_at_peak),
+                  named("wall_seconds", "s", l.wall_seconds),
+                  named("loop_seconds", "s", l.loop_seconds),
+                  named("history_every", "-", l.history_every),
+                  named("snapshot_every", "-", l.snapshot_every));
         return;
       }
     }
-    ar.record("run", l.peak, l.displacement_at_peak, l.kinetic_over_strain_at_peak, l.wall_seconds,
-              l.loop_seconds, l.history_every, l.snapshot_every);
+    ar.record("run", named("peak", "N", l.peak),
+              named("displacement_at_peak", "m", l.displacement_at_peak),
+              named("kinetic_over_strain_at_peak", "1", l.kinetic_over_strain_at_peak),
+              named("wall_seconds", "s", l.wall_seconds),
+              named("loop_seconds", "s", l.loop_seconds),
+              named("history_every", "-", l.history_every),
+              named("snapshot_every", "-", l.snapshot_every));
   }
 };
 
@@ -90,6 +102,18 @@ struct CheckpointHeader {
   std::uint32_t sections = 0;
   std::string writer;  // "rcdem VERSION (GIT HASH)"
 };
+
+// One column of a checkpoint's section as written (docs/checkpoint.md): `name` the path of the
+// names a serialize() gives it ("record.history.fs.t1"), its SI unit ("1": dimensionless; "-": a
+// count, index or flag; empty for text and byte sections, and for the history's rows, whose
+// header names their units), its width in 64-bit words, and whether they are reals.
+struct CheckpointColumn {
+  std::string section, name, unit;
+  std::uint32_t words = 0;
+  bool real = false;
+};
+// What encode_checkpoint would write for `parts`, column by column, in the file's order.
+std::vector<CheckpointColumn> checkpoint_layout(const CheckpointParts& parts);
 
 // The whole file, in memory. `scenario_hash` identifies the scenario's inputs (run.cpp).
 std::string encode_checkpoint(const CheckpointParts& parts, std::uint64_t scenario_hash);

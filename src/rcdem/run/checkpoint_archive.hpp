@@ -17,6 +17,7 @@
 #include <string>
 #include <string_view>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "rcdem/core/types.hpp"
@@ -70,6 +71,16 @@ struct Out {
 // i64), Vec3 three, Quat four (x, y, z, w), anything else its archive_fields (found by ADL).
 template <class Derived>
 struct Record {
+  // A named value (core/archive.hpp): the name matters only to an archive that describes.
+  template <class T>
+  void put(Named<T> n) {
+    auto& d = static_cast<Derived&>(*this);
+    d.enter(n.name, n.unit);
+    put(n.value);
+    d.leave();
+  }
+  void enter(const char*, const char*) {}
+  void leave() {}
   template <class T>
   void put(T& x) {
     auto& d = static_cast<Derived&>(*this);
@@ -127,11 +138,24 @@ struct CountRecord : Record<CountRecord> {
   }
 };
 
-// The words one value of type T takes.
+template <class T>
+struct Unnamed {
+  using type = T;
+};
+template <class T>
+struct Unnamed<Named<T>> {
+  using type = T;
+};
+template <class T>
+struct Unnamed<const Named<T>> {
+  using type = T;
+};
+
+// The words one value of type T (or a Named<T>) takes.
 template <class T>
 std::uint32_t words_of() {
   CountRecord c;
-  std::remove_const_t<T> v{};
+  std::remove_const_t<typename Unnamed<T>::type> v{};
   c.put(v);
   return c.words;
 }
@@ -140,23 +164,24 @@ template <class... Columns>
 std::uint32_t record_width() {
   return (words_of<std::remove_reference_t<std::invoke_result_t<Columns, std::size_t>>>() + ...);
 }
-// ... and one element of a list with the given members (none: the element itself).
+// ... and one element of a list with the given members (NamedMember, core/archive.hpp).
 template <class E, class... Members>
 std::uint32_t element_width() {
-  if constexpr (sizeof...(Members) == 0)
-    return words_of<E>();
-  else
-    return (
-        words_of<std::remove_reference_t<decltype(std::declval<E&>().*std::declval<Members>())>>() +
-        ...);
+  return (
+      words_of<
+          std::remove_reference_t<decltype(std::declval<E&>().*(std::declval<Members>().m))>>() +
+      ...);
 }
 
 template <class R, class E, class... Members>
 void put_element(R& r, E& e, Members... m) {
-  if constexpr (sizeof...(Members) == 0)
-    r.put(e);
-  else
-    (r.put(e.*m), ...);
+  (r.put(named(m.name, m.unit, e.*(m.m))), ...);
+}
+
+// Column i of a table as a named value.
+template <class R, class Col>
+void put_column(R& r, const Col& c, std::size_t i) {
+  r.put(named(c.name, c.unit, c(i)));
 }
 
 class Saver {
@@ -170,7 +195,7 @@ class Saver {
   void table(const std::string& name, std::size_t n, Columns... columns) {
     header(name, kKindWords, record_width<Columns...>(), n);
     SaveRecord r{o_};
-    for (std::size_t i = 0; i < n; ++i) (r.put(columns(i)), ...);
+    for (std::size_t i = 0; i < n; ++i) (put_column(r, columns, i), ...);
   }
   template <class... Fields>
   void record(const std::string& name, const Fields&... fields) {
@@ -226,6 +251,77 @@ class Saver {
   std::uint32_t sections_ = 0;
 };
 
+// Names each word of a record: the path of the names around it ("history.fs.t1") and the
+// innermost unit given, in order (checkpoint_layout).
+struct DescribeRecord : Record<DescribeRecord> {
+  std::vector<CheckpointColumn>* out;
+  std::string section;
+  std::vector<std::pair<std::string, std::string>> path;  // (name, unit) from the outside in
+  explicit DescribeRecord(std::vector<CheckpointColumn>& o, std::string s)
+      : out(&o), section(std::move(s)) {}
+  void enter(const char* name, const char* unit) { path.emplace_back(name, unit); }
+  void leave() { path.pop_back(); }
+  template <class T>
+  void word(const T&) {
+    std::string name, unit;
+    for (const auto& [n, u] : path) {
+      name += (name.empty() ? "" : ".") + n;
+      if (!u.empty()) unit = u;
+    }
+    if (!out->empty() && out->back().section == section && out->back().name == name) {
+      ++out->back().words;
+      return;
+    }
+    out->push_back({section, name, unit, 1, std::is_floating_point_v<T>});
+  }
+};
+
+// The layout of what a Saver writes: every section's columns, named, with their units and words
+// (a table's from its first record: an empty table describes nothing).
+class Describer {
+ public:
+  static constexpr bool loading = false;
+  explicit Describer(std::vector<CheckpointColumn>& out) : out_(out) {}
+
+  template <class... Columns>
+  void table(const std::string& name, std::size_t n, Columns... columns) {
+    if (n == 0) return;
+    DescribeRecord r{out_, name};
+    (put_column(r, columns, 0), ...);
+  }
+  template <class... Fields>
+  void record(const std::string& name, const Fields&... fields) {
+    DescribeRecord r{out_, name};
+    (r.put(fields), ...);
+  }
+  template <class Vec, class... Members>
+  void list(const std::string& name, const Vec& v, Members... members) {
+    using E = typename Vec::value_type;
+    E e{};
+    DescribeRecord r{out_, name};
+    put_element(r, e, members...);
+    (void)v;
+  }
+  void rows(const std::string& name, const std::vector<std::vector<double>>&, std::size_t width) {
+    out_.push_back({name, "row", "", static_cast<std::uint32_t>(width), true});
+  }
+  template <class Vec, class First, class Second>
+  void series(const std::string& name, const Vec& v, First first, Second) {
+    list(name, v, first);
+    text(name + ".files", "");
+  }
+  void text(const std::string& name, const std::string&) {
+    out_.push_back({name, "text", "", 0, false});
+  }
+  void expect_text(const std::string& name, const std::string& s) { text(name, s); }
+  void bytes(const std::string& name, const std::vector<std::uint8_t>&) {
+    out_.push_back({name, "bytes", "", 0, false});
+  }
+
+ private:
+  std::vector<CheckpointColumn>& out_;
+};
+
 struct Section {
   std::uint32_t kind = 0, width = 0;
   std::uint64_t count = 0;
@@ -259,10 +355,10 @@ class Loader {
           name, s.count, s.width, n, width)};
     if (!apply_) return;
     LoadRecord r{at(s)};
-    for (std::size_t i = 0; i < n; ++i) (r.put(columns(i)), ...);
+    for (std::size_t i = 0; i < n; ++i) (put_column(r, columns, i), ...);
   }
   template <class... Fields>
-  void record(const std::string& name, Fields&... fields) {
+  void record(const std::string& name, Fields... fields) {
     const Section& s = find(name, kKindWords);
     const std::uint32_t width = (words_of<Fields>() + ...);
     if (s.width != width || s.count != 1)

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "rcdem/core/archive.hpp"
 #include "rcdem/core/types.hpp"
 
 namespace rcdem {
@@ -38,8 +39,9 @@ class CrackRecord {
   template <class Archive, class Self>
   static void serialize(Archive& ar, Self& c) {
     ar.bytes("cracks.broken", c.broken_);
-    ar.list("cracks", c.rows_, &Row::position, &Row::area, &Row::step, &Row::deflection,
-            &Row::load);
+    ar.list("cracks", c.rows_, member("position", "m", &Row::position),
+            member("area", "m^2", &Row::area), member("step", "-", &Row::step),
+            member("deflection", "m", &Row::deflection), member("load", "N", &Row::load));
     if constexpr (Archive::loading)
       if (ar.applying()) c.log_read_ = kScanAll;
   }

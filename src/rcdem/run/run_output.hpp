@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "rcdem/core/archive.hpp"
 #include "rcdem/io/strain_gauges.hpp"
 #include "rcdem/io/vtu_writer.hpp"
 #include "rcdem/solver/simulation.hpp"
@@ -22,9 +23,11 @@ class SnapshotWriter {
   template <class Archive, class Self>
   static void serialize(Archive& ar, Self& w) {
     using Entry = std::pair<double, std::string>;
-    ar.series("snapshots.particles", w.particle_series_, &Entry::first, &Entry::second);
-    ar.series("snapshots.facets", w.facet_series_, &Entry::first, &Entry::second);
-    ar.series("snapshots.bars", w.bar_series_, &Entry::first, &Entry::second);
+    ar.series("snapshots.particles", w.particle_series_, member("time", "s", &Entry::first),
+              &Entry::second);
+    ar.series("snapshots.facets", w.facet_series_, member("time", "s", &Entry::first),
+              &Entry::second);
+    ar.series("snapshots.bars", w.bar_series_, member("time", "s", &Entry::first), &Entry::second);
   }
 
  private:

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "rcdem/core/archive.hpp"
 #include "rcdem/core/types.hpp"
 #include "rcdem/state/bodies.hpp"
 
@@ -28,8 +29,8 @@ struct BodyStepSums {
   // The checkpoint's "bodies.step" (core/archive.hpp); the blocks are summed again by a step.
   template <class Archive, class Self>
   static void serialize(Archive& ar, Self& s) {
-    ar.table("bodies.step", s.kinetic.size(), column(s.damping_work), column(s.kinetic),
-             column(s.jumped));
+    ar.table("bodies.step", s.kinetic.size(), column("damping_work", "J", s.damping_work),
+             column("kinetic", "J", s.kinetic), column("jumped", "-", s.jumped));
   }
 };
 

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "rcdem/config/scenario.hpp"
+#include "rcdem/core/archive.hpp"
 #include "rcdem/reinforcement/interaction_node.hpp"
 #include "rcdem/solver/step_part.hpp"
 #include "rcdem/specimens/specimen.hpp"
@@ -46,8 +47,8 @@ class InteractionNodes final : public StepPart {
   template <class Archive, class Self>
   static void serialize(Archive& ar, Self& s) {
     if (s.set_ == NodeSet::Bars || !s.states_.empty())
-      ar.table(s.set_ == NodeSet::Bars ? "nodes" : "ties", s.states_.size(), column(s.states_),
-               column(s.forces_));
+      ar.table(s.set_ == NodeSet::Bars ? "nodes" : "ties", s.states_.size(),
+               column("state", "", s.states_), column("forces", "", s.forces_));
   }
 
  private:

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "rcdem/config/scenario.hpp"
+#include "rcdem/core/archive.hpp"
 #include "rcdem/core/types.hpp"
 #include "rcdem/solver/step_part.hpp"
 
@@ -73,15 +74,15 @@ class LoadingProgram {
 template <class Record, class S>
 requires std::same_as<std::remove_const_t<S>, LoadingProgram::State>
 void archive_fields(Record& r, S& s) {
-  r.put(s.segment);
-  r.put(s.start_time);
-  r.put(s.start_displacement);
-  r.put(s.start_load);
-  r.put(s.ramp_from);
-  r.put(s.last);
-  r.put(s.stiffness);
-  r.put(s.reached);
-  r.put(s.started);
+  r.put(named("segment", "-", s.segment));
+  r.put(named("start_time", "s", s.start_time));
+  r.put(named("start_displacement", "m", s.start_displacement));
+  r.put(named("start_load", "N", s.start_load));
+  r.put(named("ramp_from", "m/s", s.ramp_from));
+  r.put(named("last", "m/s", s.last));
+  r.put(named("stiffness", "N/m", s.stiffness));
+  r.put(named("reached", "s", s.reached));
+  r.put(named("started", "-", s.started));
 }
 
 }  // namespace rcdem

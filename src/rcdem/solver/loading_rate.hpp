@@ -17,6 +17,7 @@
 #include <cstdint>
 
 #include "rcdem/config/scenario.hpp"
+#include "rcdem/core/archive.hpp"
 #include "rcdem/core/types.hpp"
 #include "rcdem/solver/energy.hpp"
 
@@ -38,7 +39,8 @@ class LoadingRate {
   // The checkpoint's "loading_rate" (core/archive.hpp): the controller's memory; 1, 0, 0 when off.
   template <class Archive, class Self>
   static void serialize(Archive& ar, Self& l) {
-    ar.record("loading_rate", l.st_.factor, l.st_.work, l.st_.damage);
+    ar.record("loading_rate", named("factor", "1", l.st_.factor), named("work", "J", l.st_.work),
+              named("damage", "J", l.st_.damage));
   }
 
  private:

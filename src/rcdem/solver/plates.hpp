@@ -103,20 +103,25 @@ struct PlateSet final : StepPart {
   // The checkpoint's "plates" and "plate_contacts" (core/archive.hpp): what a step changes.
   template <class Archive, class Self>
   static void serialize(Archive& ar, Self& s) {
-    ar.table("plates", s.plates.size(), column(s.plates, &Plate::displacement),
-             column(s.plates, &Plate::force), column(s.plates, &Plate::work),
-             column(s.plates, &Plate::contacts_active), column(s.force_prev),
-             column(s.displacement_prev));
+    ar.table("plates", s.plates.size(), column("displacement", "m", s.plates, &Plate::displacement),
+             column("force", "N", s.plates, &Plate::force),
+             column("work", "J", s.plates, &Plate::work),
+             column("contacts_active", "-", s.plates, &Plate::contacts_active),
+             column("force_prev", "N", s.force_prev),
+             column("displacement_prev", "m", s.displacement_prev));
     // Only where a plate has a program, so that the checkpoints of the runs without one keep
     // their format.
     if (s.has_program())
-      ar.table("plate_programs", s.plates.size(), [&](std::size_t i) -> auto& {
-        return s.plates[i].motion.state();
-      });
+      ar.table(
+          "plate_programs", s.plates.size(),
+          column_of(
+              "program", "", [&](std::size_t i) -> auto& { return s.plates[i].motion.state(); }));
     auto& pc = s.contacts;
-    ar.table("plate_contacts", pc.state.size(), column(pc.state), column(pc.force),
-             column(pc.torque), column(pc.strain_energy), column(pc.dissipated_friction),
-             column(pc.active), column(pc.entry_opening));
+    ar.table("plate_contacts", pc.state.size(), column("point", "", pc.state),
+             column("force", "N", pc.force), column("torque", "N*m", pc.torque),
+             column("strain_energy", "J", pc.strain_energy),
+             column("dissipated_friction", "J", pc.dissipated_friction),
+             column("active", "-", pc.active), column("entry_opening", "m", pc.entry_opening));
   }
 };
 

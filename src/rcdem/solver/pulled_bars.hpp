@@ -21,8 +21,8 @@ struct PulledBar {
   Vec3 direction = Vec3::Zero();  // unit, end -> start
   Real speed = 0.0, ramp_time = 0.0;
   LoadingProgram motion{0.0, 0.0};  // pull_velocity after the ramp, or its program
-  Real displacement = 0.0;    // along direction
-  Vec3 force = Vec3::Zero();  // on the cylinder from the concrete and the rest of the bar
+  Real displacement = 0.0;          // along direction
+  Vec3 force = Vec3::Zero();        // on the cylinder from the concrete and the rest of the bar
   Real work = 0.0;
   Real last_step = 0.0;
   Real load() const { return -force.dot(direction); }
@@ -51,16 +51,21 @@ struct PulledBars final : StepPart {
   // The checkpoint's "pulled_bars" (core/archive.hpp).
   template <class Archive, class Self>
   static void serialize(Archive& ar, Self& s) {
-    ar.table("pulled_bars", s.bars.size(), column(s.bars, &PulledBar::displacement),
-             column(s.bars, &PulledBar::force), column(s.bars, &PulledBar::work),
-             column(s.bars, &PulledBar::last_step), column(s.force_prev));
+    ar.table("pulled_bars", s.bars.size(),
+             column("displacement", "m", s.bars, &PulledBar::displacement),
+             column("force", "N", s.bars, &PulledBar::force),
+             column("work", "J", s.bars, &PulledBar::work),
+             column("last_step", "m", s.bars, &PulledBar::last_step),
+             column("force_prev", "N", s.force_prev));
     // Only where a bar has a program (the runs without one keep their format).
     const bool programs = std::any_of(s.bars.begin(), s.bars.end(), [](const PulledBar& b) {
       return b.motion.explicit_program();
     });
     if (programs)
-      ar.table("pulled_bar_programs", s.bars.size(),
-               [&](std::size_t i) -> auto& { return s.bars[i].motion.state(); });
+      ar.table(
+          "pulled_bar_programs", s.bars.size(),
+          column_of(
+              "program", "", [&](std::size_t i) -> auto& { return s.bars[i].motion.state(); }));
   }
 };
 

@@ -4,6 +4,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "rcdem/core/archive.hpp"
 #include "rcdem/solver/simulation.hpp"
 
 namespace rcdem {
@@ -24,8 +25,13 @@ void Simulation::serialize(Archive& ar, Self& s) {
   PulledBars::serialize(ar, s.pulled_);
   InteractionNodes::serialize(ar, s.ties_);
   auto& e = s.energy_;
-  ar.record("solver", s.time_, s.steps_, s.time_step_.dt, s.integrator_.damping_ref(),
-            e.external_work, e.strain, e.kinetic, e.damage, e.friction, e.damping, e.plastic);
+  ar.record("solver", named("time", "s", s.time_), named("steps", "-", s.steps_),
+            named("time_step", "s", s.time_step_.dt),
+            named("damping", "1", s.integrator_.damping_ref()),
+            named("external_work", "J", e.external_work), named("strain", "J", e.strain),
+            named("kinetic", "J", e.kinetic), named("damage", "J", e.damage),
+            named("friction", "J", e.friction), named("damping_work", "J", e.damping),
+            named("plastic", "J", e.plastic));
   LoadingRate::serialize(ar, s.loading_rate_);
   // Restored, every rank holds the whole state the file held: nothing to gather at this step.
   if constexpr (!std::is_const_v<Self>) s.motion_step_ = s.steps_;

@@ -30,9 +30,12 @@ struct Bodies {
   // orientations, masses and inertias come with the regenerated specimen.
   template <class Archive, class Self>
   static void serialize(Archive& ar, Self& b) {
-    ar.table("bodies", b.position.size(), column(b.position), column(b.velocity),
-             column(b.angular_velocity), column(b.orientation), column(b.angular_momentum),
-             column(b.force), column(b.torque));
+    ar.table("bodies", b.position.size(), column("position", "m", b.position),
+             column("velocity", "m/s", b.velocity),
+             column("angular_velocity", "rad/s", b.angular_velocity),
+             column("orientation", "1", b.orientation),
+             column("angular_momentum", "kg*m^2/s", b.angular_momentum),
+             column("force", "N", b.force), column("torque", "N*m", b.torque));
   }
 };
 

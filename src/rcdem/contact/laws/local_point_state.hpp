@@ -4,6 +4,7 @@
 #include <concepts>
 #include <type_traits>
 
+#include "rcdem/core/archive.hpp"
 #include "rcdem/core/types.hpp"
 
 namespace rcdem {
@@ -55,8 +56,8 @@ using PlanePointState = BasicPointState<PlaneVec>;
 template <class Record, class P>
 requires std::same_as<std::remove_const_t<P>, PlaneVec>
 void archive_fields(Record& r, P& v) {
-  r.put(v.x);
-  r.put(v.y);
+  r.put(named("t1", "", v.x));
+  r.put(named("t2", "", v.y));
 }
 
 template <class T>
@@ -69,20 +70,20 @@ inline constexpr bool kIsPointState<BasicPointState<V>> = true;
 template <class Record, class S>
 requires kIsPointState<std::remove_const_t<S>>
 void archive_fields(Record& r, S& s) {
-  r.put(s.fn);
-  r.put(s.fs);
-  r.put(s.un);
-  r.put(s.us);
-  r.put(s.un_max);
-  r.put(s.us_max_sq);
-  r.put(s.damage);
+  r.put(named("fn", "N", s.fn));
+  r.put(named("fs", "N", s.fs));
+  r.put(named("un", "m", s.un));
+  r.put(named("us", "m", s.us));
+  r.put(named("un_max", "m", s.un_max));
+  r.put(named("us_max_sq", "m^2", s.us_max_sq));
+  r.put(named("damage", "1", s.damage));
 }
 
 // The state into a stored one: D is written only when it changed (it only grows), so the cache
 // line it shares with read-only data (above) is not dirtied by most visits.
 template <typename V>
 [[gnu::always_inline]] inline void store_state(BasicPointState<V>& to,
-                                                const BasicPointState<V>& s) {
+                                               const BasicPointState<V>& s) {
   to.fn = s.fn;
   to.fs = s.fs;
   to.un = s.un;
