@@ -29,6 +29,7 @@
 #include "rcdem/run/run_output.hpp"
 #include "rcdem/solver/simulation.hpp"
 #include "rcdem/specimens/specimen.hpp"
+#include "small_scenarios.hpp"
 
 using namespace rcdem;
 namespace fs = std::filesystem;
@@ -470,18 +471,28 @@ std::map<std::string, SectionEntry> section_table(const std::string& file) {
 // The sections' widths are format version 5's (docs/checkpoint.md), now that each struct's
 // serialize() names its columns and the width follows from their types: a column added or dropped
 // without a new format version fails here, empty tables included (small_run pulls no bar).
+// small_run.toml after 20 steps and a history row, with every part a run checkpoints.
+struct SmallRunParts {
+  Scenario sc = small_run();
+  Simulation sim{sc, build_specimen(sc)};
+  io::History history{sim, sc};
+  TempDir dir;
+  io::SnapshotWriter snapshots{dir.path(), false, true};
+  io::CrackRecord cracks{sim};
+  io::LoopState loop;
+  SmallRunParts() {
+    for (int i = 0; i < 20; ++i) sim.step();
+    history.record(sim);
+  }
+  io::CheckpointParts parts() { return {&sim, &history, &snapshots, &cracks, &loop}; }
+};
+
 TEST(Checkpoint, SectionWidthsAreThoseOfTheFormatVersion) {
   ASSERT_EQ(io::kCheckpointVersion, 5U);
-  const Scenario sc = small_run();
-  Simulation sim(sc, build_specimen(sc));
-  io::History history(sim, sc);
-  TempDir dir;
-  io::SnapshotWriter snapshots(dir.path(), false, true);
-  io::CrackRecord cracks(sim);
-  io::LoopState loop;
-  for (int i = 0; i < 20; ++i) sim.step();
-  history.record(sim);
-  const std::string file = io::encode_checkpoint({&sim, &history, &snapshots, &cracks, &loop}, 3);
+  SmallRunParts run;
+  Simulation& sim = run.sim;
+  io::History& history = run.history;
+  const std::string file = io::encode_checkpoint(run.parts(), 3);
   auto sections = section_table(file);
   const std::map<std::string, std::uint32_t> v5 = {
       {"bodies", 22},
@@ -588,16 +599,8 @@ void check_layout(const io::CheckpointParts& parts, std::set<std::string>& print
 TEST(Checkpoint, EveryColumnIsNamedWithItsUnitAndDocumented) {
   std::set<std::string> printed;
   {  // bodies, contacts, a bar's interface and nodes, plates, and the run loop's parts
-    const Scenario sc = small_run();
-    Simulation sim(sc, build_specimen(sc));
-    io::History history(sim, sc);
-    TempDir dir;
-    io::SnapshotWriter snapshots(dir.path(), false, true);
-    io::CrackRecord cracks(sim);
-    io::LoopState loop;
-    for (int i = 0; i < 20; ++i) sim.step();
-    history.record(sim);
-    check_layout({&sim, &history, &snapshots, &cracks, &loop}, printed);
+    SmallRunParts run;
+    check_layout(run.parts(), printed);
   }
   {  // a pulled bar
     const Scenario sc = pull_out();
@@ -606,13 +609,7 @@ TEST(Checkpoint, EveryColumnIsNamedWithItsUnitAndDocumented) {
     check_layout({&sim}, printed);
   }
   {  // a plate's loading program
-    const Scenario sc = parse_scenario(R"(
-[specimen]
-shape = "box"
-size = [0.04, 0.04, 0.04]
-[generation]
-seed = 2
-relaxation_iterations = 100
+    const Scenario sc = parse_scenario(test::small_box_text(2, "voronoi", R"(
 [solver]
 preset = "basic"
 [plates.bottom]
@@ -625,7 +622,7 @@ target = -0.0001
 speed = 0.05
 [loading]
 control_plate = "top"
-)",
+)"),
                                        "program_box.toml");
     Simulation sim(sc, build_specimen(sc));
     sim.step();

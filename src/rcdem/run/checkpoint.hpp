@@ -59,26 +59,24 @@ struct LoopState {
   // The checkpoint's "run" record (core/archive.hpp). Format 4 held the peak twice.
   template <class Archive, class Self>
   static void serialize(Archive& ar, Self& l) {
+    // The peak, then what format 4 held after it (its second copy), then the rest.
+    const auto run = [&](auto... after_peak) {
+      ar.record("run", named("peak", "N", l.peak), after_peak...,
+                named("displacement_at_peak", "m", l.displacement_at_peak),
+                named("kinetic_over_strain_at_peak", "1", l.kinetic_over_strain_at_peak),
+                named("wall_seconds", "s", l.wall_seconds),
+                named("loop_seconds", "s", l.loop_seconds),
+                named("history_every", "-", l.history_every),
+                named("snapshot_every", "-", l.snapshot_every));
+    };
     if constexpr (Archive::loading) {
       if (ar.version() == 4) {
         double peak_again = 0.0;
-        ar.record("run", named("peak", "N", l.peak), named("peak_again", "N", peak_again),
-                  named("displacement_at_peak", "m", l.displacement_at_peak),
-                  named("kinetic_over_strain_at_peak", "1", l.kinetic_over_strain_at_peak),
-                  named("wall_seconds", "s", l.wall_seconds),
-                  named("loop_seconds", "s", l.loop_seconds),
-                  named("history_every", "-", l.history_every),
-                  named("snapshot_every", "-", l.snapshot_every));
+        run(named("peak_again", "N", peak_again));
         return;
       }
     }
-    ar.record("run", named("peak", "N", l.peak),
-              named("displacement_at_peak", "m", l.displacement_at_peak),
-              named("kinetic_over_strain_at_peak", "1", l.kinetic_over_strain_at_peak),
-              named("wall_seconds", "s", l.wall_seconds),
-              named("loop_seconds", "s", l.loop_seconds),
-              named("history_every", "-", l.history_every),
-              named("snapshot_every", "-", l.snapshot_every));
+    run();
   }
 };
 
