@@ -6,7 +6,8 @@
     NL-B beam past its first crack (15,000 steps, past the cracking peak near step 12,800: two
     bars, their interfaces and nodes, three plates), the pull-out of a bar with the NL-B
     interface, the tension cube past its peak; on 3 ranks also without the condensation of
-    intact contacts, and the cyclic pull-out (a loading program);
+    intact contacts, and the cyclic pull-out (a loading program); on 2 ranks the plain
+    four-point beam (two load plates, a gauge as the test's displacement: read every step);
   * a 2-rank run stopped by SIGINT after a checkpoint, resumed on 3 ranks, and another resumed on
     one process, end with the same outputs as the uninterrupted run;
   * a bad scenario under `mpirun -q` (without -q mpirun adds its own note on the exit code): one
@@ -56,6 +57,10 @@ CASES = {
     "tension_cube_points": ("tests/golden/scenarios/tension_cube60.toml",
                             ["--set", "solver.condense_elastic_contacts=false"], (3,)),
     "cyclic_pull_out": ("examples/cyclic/pull_out.toml", [], (3,)),
+    # Two load plates and a gauge as the test's displacement: rank 0 reads the gauge's particles
+    # every step, so it gathers every particle's motion every step.
+    "four_point_plain": ("examples/four_point_bending/plain.toml",
+                         ["--set", "stop.steps=3000"], (2,)),
 }
 
 

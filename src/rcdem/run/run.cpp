@@ -687,7 +687,7 @@ void build(const Scenario& sc, const fs::path& out, const RunOptions& opt, RunSe
   std::string failure;
   try {
     sim.emplace(sc, build_specimen(sc));
-    if (opt.ranks) sim->distribute(opt.ranks->comm());
+    if (opt.ranks) sim->distribute(opt.ranks->comm(), TestMeasures(*sim, sc).gauge_particles());
   } catch (const Error& e) {
     if (!opt.ranks) rethrow_naming(sc.source.string(), e);
     failure = e.what();

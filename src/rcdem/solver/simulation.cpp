@@ -101,7 +101,7 @@ void Simulation::gather_state() {
   gathered_step_ = motion_step_ = steps_;
 }
 
-void Simulation::distribute(Communicator& comm) {
+void Simulation::distribute(Communicator& comm, const std::vector<Index>& leader_reads) {
   const Index spheres = integrator_.step_sums().spheres;
   if (spheres != specimen_.concrete())
     fail(
@@ -117,6 +117,7 @@ void Simulation::distribute(Communicator& comm) {
   for (const InterfaceContacts& in : specimen_.interfaces)
     shared.insert(shared.end(), in.net.particle_a.begin(), in.net.particle_a.end());
   shared.insert(shared.end(), plates_.contacts.particle.begin(), plates_.contacts.particle.end());
+  if (comm.leader()) shared.insert(shared.end(), leader_reads.begin(), leader_reads.end());
   exchange_ = std::make_unique<RankExchange>(comm, std::move(d), specimen_.contacts, shared);
   kinematics_.only = exchange_->read_bodies(bodies_.size());
 }

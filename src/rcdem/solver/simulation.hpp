@@ -42,7 +42,9 @@ class Simulation {
   // 0 then drives the others: step, strain_energy, catch_up_condensed_points, bodies,
   // keep_strain_energy_every and exchange_seconds_by_rank first send them the same request; the
   // others call follow().
-  void distribute(Communicator& comm);
+  // `leader_reads`: spheres rank 0 reads between steps every step (the gauges' particles): it
+  // receives them as ghosts instead of gathering every sphere.
+  void distribute(Communicator& comm, const std::vector<Index>& leader_reads = {});
   // A rank other than 0: serves rank 0's requests until one it does not serve, which it returns
   // (RankCommand::Restore, Finish).
   RankMessage follow();
@@ -99,6 +101,10 @@ class Simulation {
   Index condensed_points() const {
     return concrete_.condensation().condensed_point_count(specimen_.contacts);
   }
+  // The bodies as the step left them on this rank, without gathering: distributed, current are
+  // only its own spheres, its ghosts, the cylinders and, on rank 0, the `leader_reads` of
+  // distribute(). For readers of those alone (a gauge every step).
+  const Bodies& bodies_as_stepped() const { return bodies_; }
   // Brings condensed contacts' point histories up to the last step (contacts() does it).
   void catch_up_condensed_points() const;
   // Rank 0 of a distributed run: every sphere's motion gathered from its owner, once per step

@@ -36,7 +36,8 @@ Gauge::MaterialPoint Gauge::material_point(const Vec3& p, Real radius, const Sim
   for (const Index i : m.particles) c += b.position0[i];
   c /= n;
   Eigen::Matrix3d moment = Eigen::Matrix3d::Zero();
-  for (const Index i : m.particles) moment += (b.position0[i] - c) * (b.position0[i] - c).transpose();
+  for (const Index i : m.particles)
+    moment += (b.position0[i] - c) * (b.position0[i] - c).transpose();
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(moment);
   // The particles must span the three directions: the smallest principal spread at least a
   // hundredth of the largest.
@@ -69,14 +70,21 @@ Gauge::Gauge(const GaugeSettings& s, const Simulation& sim, const std::string& w
       a_(material_point(s.point, s.radius, sim, where)),
       b_(s.kind == GaugeKind::Opening ? material_point(s.to, s.radius, sim, where) : a_) {
   const int d = s.direction();
-  direction_ = d == GaugeSettings::kAlong ? Vec3((s.to - s.point).normalized())
-                                          : Vec3(Vec3::Unit(d));
+  direction_ =
+      d == GaugeSettings::kAlong ? Vec3((s.to - s.point).normalized()) : Vec3(Vec3::Unit(d));
   for (const auto& name : s.relative_to) relative_to_.push_back(sim.find_plate(name));
 }
 
+std::vector<Index> Gauge::particles() const {
+  std::vector<Index> out(a_.particles);
+  out.insert(out.end(), b_.particles.begin(), b_.particles.end());
+  return out;
+}
+
 Real Gauge::value(const Simulation& sim) const {
-  const Bodies& b = sim.bodies();
-  if (kind_ == GaugeKind::Opening) return (displacement(b_, b) - displacement(a_, b)).dot(direction_);
+  const Bodies& b = sim.bodies_as_stepped();
+  if (kind_ == GaugeKind::Opening)
+    return (displacement(b_, b) - displacement(a_, b)).dot(direction_);
   Real u = displacement(a_, b).dot(direction_);
   if (relative_to_.empty()) return u;
   Real reference = 0.0;
@@ -94,6 +102,15 @@ TestMeasures::TestMeasures(const Simulation& sim, const Scenario& sc)
                          config::key_location(sc, "gauges." + g.name + ".radius") +
                              ": key 'gauges." + g.name + ".radius'");
   }
+}
+
+std::vector<Index> TestMeasures::gauge_particles() const {
+  std::vector<Index> out;
+  for (const Gauge& g : gauges_) {
+    const std::vector<Index> p = g.particles();
+    out.insert(out.end(), p.begin(), p.end());
+  }
+  return out;
 }
 
 Real TestMeasures::load() const {
@@ -114,8 +131,9 @@ Real TestMeasures::control_displacement() const {
 }
 
 Real TestMeasures::displacement() const {
-  return displacement_gauge_ >= 0 ? gauges_[static_cast<std::size_t>(displacement_gauge_)].value(sim_)
-                                  : control_displacement();
+  return displacement_gauge_ >= 0
+             ? gauges_[static_cast<std::size_t>(displacement_gauge_)].value(sim_)
+             : control_displacement();
 }
 
 Real TestMeasures::speed() const {

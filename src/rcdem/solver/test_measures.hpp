@@ -17,8 +17,11 @@ class Gauge {
   // `where`: the key's location for errors ("FILE:LINE: key 'gauges.NAME.radius'").
   Gauge(const GaugeSettings& settings, const Simulation& sim, const std::string& where);
   const std::string& name() const { return name_; }
-  // Its value now (m).
+  // Its value now (m). Distributed, its particles must be among those rank 0 receives every step
+  // (Simulation::distribute's `leader_reads`: TestMeasures::gauge_particles).
   Real value(const Simulation& sim) const;
+  // The particles it reads.
+  std::vector<Index> particles() const;
 
  private:
   // The material's displacement at a point (docs/model.md 12): with a radius, the affine field
@@ -55,6 +58,9 @@ class TestMeasures {
   Real speed() const;
   Real ramp() const;
   const std::vector<Gauge>& gauges() const { return gauges_; }
+  // Every gauge's particles: what rank 0 of a distributed run receives every step, so that the
+  // test's displacement costs no gathering of every particle.
+  std::vector<Index> gauge_particles() const;
   bool several_plates() const { return plates_.size() > 1; }
 
  private:
