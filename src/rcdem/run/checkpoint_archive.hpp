@@ -146,10 +146,6 @@ template <class T>
 struct Unnamed<Named<T>> {
   using type = T;
 };
-template <class T>
-struct Unnamed<const Named<T>> {
-  using type = T;
-};
 
 // The words one value of type T (or a Named<T>) takes.
 template <class T>

@@ -15,6 +15,7 @@
 #include <ctime>
 #include <fstream>
 #include <limits>
+#include <numeric>
 #include <optional>
 #include <sstream>
 #include <utility>
@@ -205,13 +206,6 @@ namespace {
 
 // Snapshots expected to take more than this (bytes) are announced at the set-up.
 constexpr double kLargeOutputBytes = 1e9;
-
-double exchange_total(const std::vector<ExchangeSeconds>& by_rank, std::size_t rank) {
-  double total = 0.0;
-  if (rank < by_rank.size())
-    for (const double t : by_rank[rank]) total += t;
-  return total;
-}
 
 // summary.json's exchange_seconds_by_rank: one object per rank, its seconds by kind.
 nlohmann::ordered_json exchange_json(const std::vector<ExchangeSeconds>& by_rank) {
@@ -613,7 +607,10 @@ nlohmann::ordered_json RunLoop::summary_json(const RunSummary& r, double wall, d
   if (const RankExchange* x = sim_.exchange())  // a distributed run (docs/parallel.md)
     j["distributed"] = {
         {"ranks", x->comm().size()},
-        {"rank_0_exchange_seconds", exchange_total(exchange_by_rank_, 0)},
+        {"rank_0_exchange_seconds",
+         exchange_by_rank_.empty()
+             ? 0.0
+             : std::accumulate(exchange_by_rank_[0].begin(), exchange_by_rank_[0].end(), 0.0)},
         {"exchange_seconds_by_rank", exchange_json(exchange_by_rank_)},
         {"rank_0_evaluated_points", x->decomposition().evaluated_points(sim_.specimen().contacts)}};
   j["rcdem"] = {{"version", build_version()},

@@ -148,12 +148,6 @@ void RankExchange::share_jumps(BodyStepSums& sums) const {
   comm_->allgather(sums.jumped, d_.sphere_offsets);
 }
 
-double RankExchange::seconds() const {
-  double total = 0.0;
-  for (const double t : seconds_) total += t;
-  return total;
-}
-
 std::vector<ExchangeSeconds> RankExchange::gather_seconds() const {
   std::vector<ExchangeSeconds> all(static_cast<std::size_t>(comm_->size()));
   all[static_cast<std::size_t>(comm_->rank())] = seconds_;

@@ -24,7 +24,7 @@ enum class RankCommand : std::int64_t {
   StrainEnergy,      // the ledger's strain energy (its concrete blocks gathered)
   GatherState,       // every contact, point and body state, onto rank 0
   GatherMotion,      // every sphere's motion onto rank 0 (what its outputs read)
-  ExchangeTimes,     // every rank's RankExchange::seconds_by_kind onto rank 0
+  ExchangeTimes,     // every rank's exchange time by kind onto rank 0
   KeepStrainEnergy,  // value: Simulation::keep_strain_energy_every's n
   Restore,           // the run loop's: a checkpoint's path follows
   Finish,            // the run ended: value 0, or 1 after an error rank 0 reports
@@ -89,11 +89,9 @@ class RankExchange {
   // Rank 0's message to every rank (the others receive it).
   RankMessage exchange(RankMessage m) const;
   // Wall time this rank has spent in the step's exchanges (waiting for the others included) and
-  // in rank 0's requests since the last reset, in all and by kind.
-  double seconds() const;
-  const ExchangeSeconds& seconds_by_kind() const { return seconds_; }
+  // in rank 0's requests since the last reset, by kind.
   void reset_seconds() const { seconds_.fill(0.0); }
-  // Every rank's seconds_by_kind, in rank order, on rank 0 (collective).
+  // Every rank's exchange time by kind, in rank order, on rank 0 (collective).
   std::vector<ExchangeSeconds> gather_seconds() const;
 
  private:
