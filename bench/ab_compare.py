@@ -17,7 +17,7 @@ Usage:
       -DCMAKE_BUILD_TYPE=Release -DRCDEM_BUILD_TESTS=OFF && ninja -C /tmp/old/build rcdem_step_bench
     OMP_NUM_THREADS=2 bench/ab_compare.py 6 /tmp/old/build/bench/rcdem_step_bench \\
       build/bench/rcdem_step_bench examples/three_point_bending/study/AN4_NL-B.toml 100 10 2 \\
-      --checkpoint results/bench_ckpt/checkpoint_000000064000.rcp
+      --checkpoint results/bench_ckpt/checkpoint_000000064000.h5
 Prints one line per round, then a summary; the last line is `ab_median_ratio=<B/A>`.
 """
 import math

@@ -59,7 +59,7 @@ TENSION=examples/uniaxial/tension.toml
 BEAM=examples/three_point_bending/study/AN4_NL-B.toml
 bench "$CUBE" "$S_CUBE" 50 "$REPEATS" --threads "$THREADS_LIST"
 OMP_NUM_THREADS=$NP "$BENCH" "$TENSION" 1 "$CRACK_AT" 1 --save-checkpoint "$WORK/crack" >/dev/null
-CRACKED=$(ls "$WORK"/crack/checkpoint_*.rcp | tail -1)
+CRACKED=$(ls "$WORK"/crack/checkpoint_*.h5 | tail -1)
 bench "$TENSION" "$S_CRACK" 0 "$REPEATS" --checkpoint "$CRACKED" --threads "$THREADS_LIST"
 bench "$BEAM" "$S_BEAM" 20 "$REPEATS" --threads "$THREADS_LIST"
 if [[ "${SKIP_BIG:-0}" != 1 ]]; then

@@ -7,7 +7,7 @@
 #   e.g. (the cracked cube: its checkpoint from
 #   `build/bench/rcdem_step_bench examples/uniaxial/tension.toml 1 12000 1 --save-checkpoint DIR`)
 #   OMP_NUM_THREADS=1 bash bench/hold_ab.sh examples/uniaxial/tension.toml \
-#     DIR/checkpoint_000000012000.rcp 10
+#     DIR/checkpoint_000000012000.h5 10
 # Writes the two copies of SCENARIO next to it (its includes are relative), as
 # .hold_ab_<name>_{false,true}.toml, and removes them when it ends. Prints ab_compare.py's lines;
 # the last is ab_median_ratio=<B/A>.

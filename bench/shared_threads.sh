@@ -56,7 +56,7 @@ say "counts=$COUNTS rounds=$ROUNDS steps_cube=$STEPS_CUBE steps_crack=$STEPS_CRA
 CUBE=examples/uniaxial/compression.toml
 TENSION=examples/uniaxial/tension.toml
 OMP_NUM_THREADS=$NP "$BENCH" "$TENSION" 1 "$CRACK_AT" 1 --save-checkpoint "$WORK/crack" >/dev/null
-CRACKED=$(ls "$WORK"/crack/checkpoint_*.rcp | tail -1)
+CRACKED=$(ls "$WORK"/crack/checkpoint_*.h5 | tail -1)
 
 LOADS="0 1"
 ((NP > 2)) && LOADS+=" 2"

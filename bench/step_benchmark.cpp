@@ -7,7 +7,7 @@
 //   scenario saved (run/checkpoint: a beam cracked half way through, say; the specimen must be the
 //   same, the scenario's hash is not checked, so a copy of the scenario with other solver or
 //   output keys serves); runs WARMUP steps (not timed; with --save-checkpoint, the state after
-//   them is written to DIR/checkpoint_<step>.rcp, so that a cracked state is made once and timed
+//   them is written to DIR/checkpoint_<step>.h5, so that a cracked state is made once and timed
 //   at several thread counts; --threads times each count in turn, in this one process, each from
 //   the state after the warm-up: one generation for all, and the same steps, which must end on
 //   the same bits: end_strain_energy_J; `auto` is rcdem run's default: the count follows the

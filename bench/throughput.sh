@@ -109,7 +109,7 @@ if [[ $CRACKED == 1 ]]; then
   ckpt=${CHECKPOINT:-}
   if [[ -z "$ckpt" ]]; then
     mkdir -p results/bench_ckpt_tension
-    ckpt=results/bench_ckpt_tension/checkpoint_000000012000.rcp
+    ckpt=results/bench_ckpt_tension/checkpoint_000000012000.h5
     if [[ ! -f "$ckpt" ]]; then
       echo "making the cracked cube's checkpoint (12,000 steps)..." >&2
       OMP_NUM_THREADS=$THREADS "$STEP_BENCH" "$cube" 1 12000 1 \

@@ -7,11 +7,12 @@ cd "$(dirname "$0")/.."
 
 PACKAGES=(build-essential cmake ninja-build pkg-config git
           voro++-dev libeigen3-dev libtomlplusplus-dev libcli11-dev libfmt-dev nlohmann-json3-dev
-          libgtest-dev libgmock-dev libbenchmark-dev libmetis-dev
+          libgtest-dev libgmock-dev libbenchmark-dev libmetis-dev libhdf5-dev
           python3 python3-dev python3-numpy python3-scipy python3-matplotlib python3-meshio
-          python3-pytest pybind11-dev help2man)
-# The distributed run's build (CMakePresets.json "mpi"; the test command builds it): Open MPI.
-[ "${RCDEM_SETUP_MPI:-0}" = 1 ] && PACKAGES+=(libopenmpi-dev openmpi-bin)
+          python3-pytest python3-h5py hdf5-tools pybind11-dev help2man)
+# The distributed run's build (CMakePresets.json "mpi"; the test command builds it): Open MPI,
+# and the HDF5 library built with it.
+[ "${RCDEM_SETUP_MPI:-0}" = 1 ] && PACKAGES+=(libopenmpi-dev openmpi-bin libhdf5-openmpi-dev)
 
 missing=()
 for p in "${PACKAGES[@]}"; do

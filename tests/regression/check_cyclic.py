@@ -125,7 +125,7 @@ def check_resume(tmp, whole):
         p = subprocess.Popen([rcdem, "-q", "run", scenario("pull_out.toml"), "-o", killed,
                               "--force", "--set", EVERY_STEP, "--checkpoint-every", "3000"],
                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        while p.poll() is None and not any(n.endswith(".rcp") for n in os.listdir(killed)
+        while p.poll() is None and not any(n.endswith(".h5") for n in os.listdir(killed)
                                            if os.path.isdir(killed)):
             time.sleep(0.01)
         if p.poll() is None:

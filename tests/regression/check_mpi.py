@@ -43,7 +43,7 @@ def check(cond, what, detail=""):
 WALL_CLOCK = {"seconds", "loop_seconds", "steps_per_second", "step_seconds", "threads"}
 # summary.json's record of the ranks (their count, rank 0's time in exchanges): the run's own.
 WALL_CLOCK.add("distributed")
-CKPT = re.compile(r"^checkpoint_(\d{12})\.rcp$")
+CKPT = re.compile(r"^checkpoint_(\d{12})\.h5$")
 # Open MPI as root needs the first option; the others let 3 ranks share 2 cores without binding.
 MPI_OPTIONS = ["--allow-run-as-root", "--oversubscribe", "--bind-to", "none"]
 

@@ -8,7 +8,7 @@ on tests/regression/small_run.toml (4,000 steps here):
     uninterrupted run; its manifest tells both sessions;
   * SIGINT (after two periodic checkpoints): exit code 130 within 2 s, a message with
     "--resume", a checkpoint of the step it stopped at, the last two kept, the file reads as
-    docs/checkpoint.md describes it (header, sections, CRC-32 checked here with zlib); resumed
+    docs/checkpoint.md describes it (h5py; header, sections, CRC-32 checked here with zlib); resumed
     (at 2 threads) it ends as the uninterrupted run;
   * SIGTERM twice within 3 ms (as GNU timeout may deliver it): one request, exit 143 and a
     checkpoint, in each of 3 runs;
@@ -38,6 +38,7 @@ import zlib
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from checklist import Checklist  # noqa: E402
+from checkpoint_image import binary_image  # noqa: E402
 
 rcdem, source = sys.argv[1], sys.argv[2]
 checks = Checklist()
@@ -45,7 +46,7 @@ check = checks.check
 # What depends on the machine's load: wall times, and the thread counts a run followed (--threads
 # auto changes the count with the free cores; the results do not change).
 WALL_CLOCK = {"seconds", "loop_seconds", "steps_per_second", "step_seconds", "threads"}
-CKPT = re.compile(r"^checkpoint_(\d{12})\.rcp$")
+CKPT = re.compile(r"^checkpoint_(\d{12})\.h5$")
 seed = int(os.environ.get("RCDEM_TEST_SEED", random.randrange(1 << 30)))
 rng = random.Random(seed)
 print(f"random seed {seed} (set RCDEM_TEST_SEED to repeat)")
@@ -113,8 +114,9 @@ def same_as(ref, d, what):
 
 
 def parse_checkpoint(path):
-    """The layout of docs/checkpoint.md, read independently of rcdem."""
-    data = read_bytes(path)
+    """The layout of docs/checkpoint.md, read independently of rcdem (h5py and the byte layout
+    of the image)."""
+    data = binary_image(path)
     h = {"magic": data[:8]}
     h["version"], h["bom"] = struct.unpack_from("<II", data, 8)
     h["size"], h["step"], h["time"] = struct.unpack_from("<Qqd", data, 16)
@@ -182,7 +184,7 @@ try:
           f"{[s for s, _ in done]}")
     r = run(["run", "--resume", killed])
     last = done[-1][0] if done else -1
-    check(r.returncode == 0 and f"resuming from {os.path.join(killed, f'checkpoint_{last:012d}.rcp')}"
+    check(r.returncode == 0 and f"resuming from {os.path.join(killed, f'checkpoint_{last:012d}.h5')}"
           in r.stderr, f"--resume continues from the newest checkpoint, step {last} "
           + ("" if r.returncode == 0 else f"({r.stderr.strip()[-300:]})"))
     same_as(ref, killed, "SIGKILL + --resume vs uninterrupted")
@@ -234,8 +236,8 @@ try:
         check(h["magic"] == b"RCDEMCKP" and h["version"] == 5 and h["bom"] == 0x01020304
               and h["size"] == len(h["data"]) and h["step"] == at_step and h["crc_ok"]
               and h["writer"].startswith("rcdem "),
-              f"the checkpoint reads as documented (format 5, {len(h['data'])} bytes, "
-              f"{len(h['sections'])} sections, CRC-32 checked by zlib)")
+              f"the checkpoint reads as documented (h5py, the image of format 5: "
+              f"{len(h['data'])} bytes, {len(h['sections'])} sections, CRC-32 checked by zlib)")
         need = {"bodies": 22, "bodies.step": 3, "contacts": 17, "contacts.points": 9,
                 "interface.0": 17, "interface.0.points": 9, "nodes": 35, "plates": 8,
                 "plate_contacts": 21, "pulled_bars": 7, "solver": 11,

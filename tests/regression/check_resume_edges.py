@@ -42,7 +42,7 @@ def resume(d):
 
 
 def checkpoints(d):
-    return sorted(glob.glob(os.path.join(d, "checkpoint_*.rcp")))
+    return sorted(glob.glob(os.path.join(d, "checkpoint_*.h5")))
 
 
 def interrupted_run(tmp, name):
@@ -65,7 +65,7 @@ def interrupted_run(tmp, name):
 
 with tempfile.TemporaryDirectory() as tmp:
     d, _ = interrupted_run(tmp, "fifo")
-    fifo = os.path.join(d, "checkpoint_999999999999.rcp")
+    fifo = os.path.join(d, "checkpoint_999999999999.h5")
     os.mkfifo(fifo)
     r = resume(d)
     check(r is not None and r.returncode == 0 and "not a regular file" in r.stderr,
@@ -75,7 +75,7 @@ with tempfile.TemporaryDirectory() as tmp:
     for kind in ("with a checkpoint's header", "of zeros"):
         d, _ = interrupted_run(tmp, "sparse" + str(len(kind)))
         head = open(checkpoints(d)[-1], "rb").read(24)
-        huge = os.path.join(d, "checkpoint_999999999999.rcp")
+        huge = os.path.join(d, "checkpoint_999999999999.h5")
         with open(huge, "wb") as f:
             if kind.startswith("with"):
                 size = 1 << 40
@@ -96,7 +96,7 @@ with tempfile.TemporaryDirectory() as tmp:
     m["sessions"][-1]["exit_state"] = "running"
     json.dump(m, open(os.path.join(d, "manifest.json"), "w"))
     shutil.copy(os.path.join(d, "summary.json"), os.path.join(tmp, "summary.json"))
-    open(os.path.join(d, "checkpoint_000000000200.rcp"), "wb").write(b"left by the kill")
+    open(os.path.join(d, "checkpoint_000000000200.h5"), "wb").write(b"left by the kill")
     r = resume(d)
     m = json.load(open(os.path.join(d, "manifest.json")))
     check(r.returncode == 0 and m["exit_state"] == "finished" and m["end_time"]

@@ -74,7 +74,7 @@ with tempfile.TemporaryDirectory() as tmp:
     time.sleep(0.3)
     p.send_signal(signal.SIGHUP)
     _, err = p.communicate(timeout=120)
-    ck = glob.glob(os.path.join(out, "checkpoint_*.rcp"))
+    ck = glob.glob(os.path.join(out, "checkpoint_*.h5"))
     check(p.returncode == 129 and ck, f"SIGHUP: exit {p.returncode}, {len(ck)} checkpoint(s) "
           f"({err.strip()[-120:]})")
     r = subprocess.run([rcdem, "-q", "run", "--resume", out], capture_output=True, text=True,
@@ -106,7 +106,7 @@ with tempfile.TemporaryDirectory() as tmp:
           f"a SIGKILLed study's running case stops ({len(kids)} child, "
           f"{time.time() - t0:.1f} s)")
     m = json.load(open(os.path.join(case, "manifest.json")))
-    check(glob.glob(os.path.join(case, "checkpoint_*.rcp")) and m["exit_state"] == "interrupted",
+    check(glob.glob(os.path.join(case, "checkpoint_*.h5")) and m["exit_state"] == "interrupted",
           f"and it checkpointed (manifest: {m['exit_state']})")
 
     for args, what in ((["run", "--bogus"], "an unknown option"),

@@ -40,7 +40,7 @@ with tempfile.TemporaryDirectory() as tmp:
     check(p.returncode == 130 and "run the same command again to resume" in err,
           f"SIGINT stops the study (exit {p.returncode}, {time.time() - t_sig:.1f} s) and says how "
           "to resume")
-    ckpts = glob.glob(os.path.join(out, "cases", "AN0", "checkpoint_*.rcp"))
+    ckpts = glob.glob(os.path.join(out, "cases", "AN0", "checkpoint_*.h5"))
     check(len(ckpts) >= 1, f"the interrupted case left a checkpoint ({len(ckpts)})")
     r = subprocess.run(cmd, capture_output=True, text=True, timeout=1200, cwd=source)
     check(r.returncode == 0, f"the quick AN0 study exits 0 ({r.stderr.strip()[-400:]})")

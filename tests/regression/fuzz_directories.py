@@ -125,7 +125,7 @@ class Fuzzer:
 
     @staticmethod
     def checkpoints(d):
-        return sorted(glob.glob(os.path.join(d, "checkpoint_*.rcp"))) if os.path.isdir(d) else []
+        return sorted(glob.glob(os.path.join(d, "checkpoint_*.h5"))) if os.path.isdir(d) else []
 
     def fresh(self, src, k):
         dst = os.path.join(self.tmp, f"case{k}")
@@ -251,7 +251,7 @@ class Fuzzer:
             if os.path.lexists(path):
                 ops.append(self.damage_checkpoint(d, path))
         if self.rng.random() < 0.2:  # a damaged "newer" checkpoint
-            extra = os.path.join(d, "checkpoint_999999999999.rcp")
+            extra = os.path.join(d, "checkpoint_999999999999.h5")
             shutil.copy(self.checkpoints(self.interrupted)[0], extra)
             ops.append("newer-" + self.damage_checkpoint(d, extra))
         code, err = self.run(["run", "--resume", d])

@@ -173,8 +173,9 @@ TEST(Checkpoint, RestoredRunContinuesBitwise) {
     for (int i = 0; i < 300; ++i) a.step();
     TempDir dir;
     const fs::path file = io::write_checkpoint(dir.path(), io::CheckpointParts{&a}, 7);
-    EXPECT_EQ(file.filename(), "checkpoint_000000000300.rcp");
-    const std::string saved = read_file(file);
+    EXPECT_EQ(file.filename(), "checkpoint_000000000300.h5");
+    EXPECT_EQ(read_file(file).substr(0, 8), "\x89HDF\r\n\x1a\n");
+    const std::string saved = io::checkpoint_image(file);
     EXPECT_EQ(difference(saved, encode(a)), "");
 
     Simulation b(sc, specimen);
@@ -241,7 +242,7 @@ TEST(Checkpoint, RunPartsRoundTrip) {
   io::LoopState lb;
   const io::CheckpointParts pb{&b, &hb, &wb, &cb, &lb};
   io::restore_checkpoint(file, pb, 11);
-  EXPECT_EQ(difference(io::encode_checkpoint(pb, 11), read_file(file)), "");
+  EXPECT_EQ(difference(io::encode_checkpoint(pb, 11), io::checkpoint_image(file)), "");
   EXPECT_EQ(hb.data(), ha.data());
   EXPECT_EQ(cb.size(), ca.size());
   EXPECT_EQ(cb.first_cracking(), ca.first_cracking());
@@ -258,7 +259,8 @@ TEST(Checkpoint, RunPartsRoundTrip) {
             std::string::npos);
 }
 
-// Damaged or foreign files: rejected before anything is changed, with the file and the reason.
+// Damaged or foreign files in the binary format (.rcp, still read): rejected before anything is
+// changed, with the file and the reason.
 TEST(Checkpoint, DamagedFilesAreRejectedWithTheReason) {
   const Scenario sc = small_run();
   const Specimen specimen = build_specimen(sc);
@@ -266,7 +268,7 @@ TEST(Checkpoint, DamagedFilesAreRejectedWithTheReason) {
   for (int i = 0; i < 50; ++i) a.step();
   TempDir dir;
   const fs::path good = io::write_checkpoint(dir.path(), io::CheckpointParts{&a}, 7);
-  const std::string bytes = read_file(good);
+  const std::string bytes = io::checkpoint_image(good);
   Simulation b(sc, specimen);
   const std::string fresh = encode(b);
   const auto restore_msg = [&](const std::string& data) {
@@ -348,7 +350,7 @@ TEST(Checkpoint, FallsBackToThePreviousCheckpoint) {
 
   // Both damaged.
   std::string last = read_file(files[1].path);
-  last[100] = static_cast<char>(last[100] ^ 1);
+  last[last.size() / 2] = static_cast<char>(last[last.size() / 2] ^ 1);  // in a dataset
   write_file(files[1].path, last);
   const std::string none =
       message_of([&] { io::restore_latest_checkpoint(dir.path(), io::CheckpointParts{&b}, 7); });

@@ -15,8 +15,8 @@
 
 #include "rcdem/core/build_info.hpp"
 #include "rcdem/core/error.hpp"
-#include "rcdem/io/atomic_file.hpp"
 #include "rcdem/run/checkpoint_archive.hpp"
+#include "rcdem/run/checkpoint_hdf5.hpp"
 #include "rcdem/run/crack_record.hpp"
 #include "rcdem/run/run_output.hpp"
 #include "rcdem/solver/simulation_archive.hpp"
@@ -78,7 +78,8 @@ constexpr std::uint32_t kByteOrderMark = 0x01020304U;
 // magic 8, version 4, byte-order mark 4, file size 8, step 8, time 8, scenario hash 8, specimen
 // fingerprint 8, section count 4, writer length 4.
 constexpr std::size_t kFixedHeader = 64;
-constexpr std::size_t kTrailer = 4;
+constexpr std::size_t kTrailer = kImageTrailer;
+constexpr std::size_t kFileSizeAt = 16, kSectionCountAt = 56;
 
 // The state, part by part, each part's sections written by its own serialize() (docs/checkpoint.md
 // lists them in this order).
@@ -160,31 +161,45 @@ std::uint64_t specimen_fingerprint(const Simulation& s) {
 // ---------------------------------------------------------------------------------------------
 // Files.
 
+namespace checkpoint_detail {
+
+std::string image_header(const CheckpointHeader& h) {
+  Out o;
+  o.bytes(kCheckpointMagic, 8);
+  o.u32(h.version);
+  o.u32(kByteOrderMark);
+  o.u64(h.file_size);
+  o.u64(static_cast<std::uint64_t>(h.step));
+  o.f64(h.time);
+  o.u64(h.scenario_hash);
+  o.u64(h.specimen_fingerprint);
+  o.u32(h.sections);
+  o.u32(static_cast<std::uint32_t>(h.writer.size()));
+  o.bytes(h.writer.data(), h.writer.size());
+  return std::move(o.buf);
+}
+
+}  // namespace checkpoint_detail
+
 std::string encode_checkpoint(const CheckpointParts& parts, std::uint64_t scenario_hash) {
   if (!parts.sim) throw std::logic_error("encode_checkpoint: no simulation");
   const Simulation& sim = *parts.sim;
+  CheckpointHeader h;
+  h.version = kCheckpointVersion;
+  h.step = sim.steps();
+  h.time = sim.time();
+  h.scenario_hash = scenario_hash;
+  h.specimen_fingerprint = specimen_fingerprint(sim);
+  h.writer = fmt::format("rcdem {} ({})", build_version(), build_git_hash());
   Out o;
-  o.bytes(kCheckpointMagic, 8);
-  o.u32(kCheckpointVersion);
-  o.u32(kByteOrderMark);
-  const std::size_t size_at = o.buf.size();
-  o.u64(0);  // the file size, set below
-  o.u64(static_cast<std::uint64_t>(sim.steps()));
-  o.f64(sim.time());
-  o.u64(scenario_hash);
-  o.u64(specimen_fingerprint(sim));
-  const std::size_t sections_at = o.buf.size();
-  o.u32(0);  // the section count, set below
-  const std::string writer = fmt::format("rcdem {} ({})", build_version(), build_git_hash());
-  o.u32(static_cast<std::uint32_t>(writer.size()));
-  o.bytes(writer.data(), writer.size());
+  o.buf = image_header(h);  // its size and section count set below
   // Condensed contacts' histories as if visited (elastic_condensation.hpp): what the file holds
   // does not depend on the condensation, and a restart needs no kinematics of the last step.
   parts.sim->catch_up_condensed_points();
   Saver saver(o);
   walk(saver, parts);
-  o.put_u32_at(sections_at, saver.sections());
-  o.put_u64_at(size_at, o.buf.size() + kTrailer);
+  o.put_u32_at(kSectionCountAt, saver.sections());
+  o.put_u64_at(kFileSizeAt, o.buf.size() + kTrailer);
   o.u32(crc32(o.buf.data(), o.buf.size()));
   return std::move(o.buf);
 }
@@ -204,21 +219,25 @@ std::size_t read_fully(int fd, char* data, std::size_t size) {
   return done;
 }
 
-// The file's bytes, once it is known to be a regular file (a FIFO so named would block the
-// resume) that starts like a checkpoint and fits in memory (a huge sparse file so named would
-// exhaust it): anything else is rejected, and the previous checkpoint taken.
-std::string read_checked(int fd) {
+// The file's image in the binary format, once it is known to be a regular file (a FIFO so named
+// would block the resume) that starts like a checkpoint (binary, or HDF5: converted) and fits in
+// memory (a huge sparse file so named would exhaust it): anything else is rejected, and the
+// previous checkpoint taken.
+std::string read_checked(int fd, const fs::path& file) {
   struct stat st {};
   if (::fstat(fd, &st) != 0) throw Reject{fmt::format("cannot read it: {}", std::strerror(errno))};
   if (!S_ISREG(st.st_mode)) throw Reject{"not a regular file"};
   char head[24];
   const std::size_t got = read_fully(fd, head, sizeof head);
-  if (got == sizeof head && std::memcmp(head, kCheckpointMagic, 8) != 0)
-    throw Reject{"not an rcdem checkpoint (it does not start with 'RCDEMCKP')"};
+  const bool hdf5 = got >= 8 && std::memcmp(head, kHdf5Signature, 8) == 0;
+  if (got == sizeof head && !hdf5 && std::memcmp(head, kCheckpointMagic, 8) != 0)
+    throw Reject{
+        "not an rcdem checkpoint (it starts neither with 'RCDEMCKP' nor with HDF5's signature)"};
   const double memory =
       static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGESIZE));
   if (memory > 0.0 && static_cast<double>(st.st_size) > 0.5 * memory)
     throw Reject{fmt::format("{} bytes, more than half of this machine's memory", st.st_size)};
+  if (hdf5) return read_hdf5_checkpoint(file, static_cast<std::uint64_t>(st.st_size));
   std::string data;
   try {
     data.assign(std::max(static_cast<std::size_t>(st.st_size), got), '\0');
@@ -234,7 +253,7 @@ std::string read_whole(const fs::path& file) {
   const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
   if (fd < 0) throw Reject{fmt::format("cannot open it: {}", std::strerror(errno))};
   try {
-    std::string data = read_checked(fd);
+    std::string data = read_checked(fd, file);
     ::close(fd);
     return data;
   } catch (...) {
@@ -243,9 +262,11 @@ std::string read_whole(const fs::path& file) {
   }
 }
 
-Parsed parse(const fs::path& file) {
+}  // namespace
+
+Parsed checkpoint_detail::parse_image(std::string data) {
   Parsed f;
-  f.data = read_whole(file);
+  f.data = std::move(data);
   const std::string& d = f.data;
   const auto* u = reinterpret_cast<const unsigned char*>(d.data());
   if (d.size() < kFixedHeader + kTrailer)
@@ -322,11 +343,17 @@ Parsed parse(const fs::path& file) {
     need(static_cast<std::size_t>(bytes), "a section");
     s.offset = at;
     at += static_cast<std::size_t>(bytes);
-    f.sections[name] = s;
+    if (!f.sections.emplace(name, s).second)
+      throw Reject{fmt::format("malformed: section '{}' appears twice", name)};
+    f.order.push_back(name);
   }
   if (at != end) throw Reject{"malformed: bytes between the last section and the checksum"};
   return f;
 }
+
+namespace {
+
+Parsed parse(const fs::path& file) { return parse_image(read_whole(file)); }
 
 std::string rejected(const fs::path& file, const std::string& reason) {
   return fmt::format("checkpoint '{}' rejected: {}", file.string(), reason);
@@ -337,6 +364,14 @@ std::string rejected(const fs::path& file, const std::string& reason) {
 CheckpointHeader inspect_checkpoint(const fs::path& file) {
   try {
     return parse(file).header;
+  } catch (const Reject& r) {
+    throw Error(rejected(file, r.reason));
+  }
+}
+
+std::string checkpoint_image(const fs::path& file) {
+  try {
+    return parse(file).data;
   } catch (const Reject& r) {
     throw Error(rejected(file, r.reason));
   }
@@ -369,34 +404,51 @@ CheckpointHeader restore_checkpoint(const fs::path& file, const CheckpointParts&
 }
 
 fs::path checkpoint_path(const fs::path& dir, std::int64_t step) {
-  return dir / fmt::format("checkpoint_{:012d}.rcp", step);
+  return dir / fmt::format("checkpoint_{:012d}.h5", step);
 }
 
-std::vector<CheckpointFile> list_checkpoints(const fs::path& dir) {
-  std::vector<CheckpointFile> out;
-  std::error_code ec;
-  for (const auto& e : fs::directory_iterator(dir, ec)) {
-    const std::string name = e.path().filename().string();
-    constexpr std::string_view prefix = "checkpoint_", suffix = ".rcp";
-    if (name.size() <= prefix.size() + suffix.size() || name.rfind(prefix, 0) != 0 ||
+namespace {
+
+// The step of a checkpoint's file name (checkpoint_<digits>.h5, or .rcp as written before the
+// HDF5 format), or -1.
+std::int64_t checkpoint_step(const std::string& name) {
+  constexpr std::string_view prefix = "checkpoint_";
+  if (name.rfind(prefix, 0) != 0) return -1;
+  for (const std::string_view suffix : {".h5", ".rcp"}) {
+    if (name.size() <= prefix.size() + suffix.size() ||
         name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0)
       continue;
     const std::string digits =
         name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
     if (digits.empty() || digits.size() > 18 ||
         !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }))
-      continue;
-    out.push_back({e.path(), std::stoll(digits)});
+      return -1;
+    return std::stoll(digits);
   }
-  std::sort(out.begin(), out.end(),
-            [](const CheckpointFile& a, const CheckpointFile& b) { return a.step > b.step; });
+  return -1;
+}
+
+}  // namespace
+
+std::vector<CheckpointFile> list_checkpoints(const fs::path& dir) {
+  std::vector<CheckpointFile> out;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir, ec))
+    if (const std::int64_t step = checkpoint_step(e.path().filename().string()); step >= 0)
+      out.push_back({e.path(), step});
+  // Newest first; of two files of one step (a run resumed from the binary format), the HDF5 one.
+  std::sort(out.begin(), out.end(), [](const CheckpointFile& a, const CheckpointFile& b) {
+    return a.step != b.step ? a.step > b.step
+                            : a.path.extension() == ".h5" && b.path.extension() != ".h5";
+  });
   return out;
 }
 
 namespace {
 
 bool is_checkpoint_temporary(const std::string& name) {
-  return name.rfind("checkpoint_", 0) == 0 && name.find(".rcp.tmp.") != std::string::npos;
+  return name.rfind("checkpoint_", 0) == 0 && (name.find(".rcp.tmp.") != std::string::npos ||
+                                               name.find(".h5.tmp.") != std::string::npos);
 }
 
 void sync_directory(const fs::path& dir) {
@@ -406,20 +458,40 @@ void sync_directory(const fs::path& dir) {
   ::close(fd);
 }
 
+// Writes the checkpoint to `tmp`, flushes it to the disk and renames it `path`; throws Reject.
+void write_synced(const fs::path& path, const fs::path& tmp, const CheckpointParts& parts,
+                  std::uint64_t scenario_hash) {
+  std::error_code ec;
+  fs::remove(tmp, ec);  // left by an earlier process of the same id
+  write_hdf5_checkpoint(tmp, parse_image(encode_checkpoint(parts, scenario_hash)),
+                        checkpoint_layout(parts));
+  const int fd = ::open(tmp.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0 || ::fsync(fd) != 0) {
+    const int err = errno;
+    if (fd >= 0) ::close(fd);
+    throw Reject{std::strerror(err)};
+  }
+  ::close(fd);
+  if (::rename(tmp.c_str(), path.c_str()) != 0) throw Reject{std::strerror(errno)};
+}
+
 }  // namespace
 
 fs::path write_checkpoint(const fs::path& dir, const CheckpointParts& parts,
                           std::uint64_t scenario_hash, int keep) {
-  const std::string data = encode_checkpoint(parts, scenario_hash);
   const fs::path path = checkpoint_path(dir, parts.sim->steps());
   const fs::path tmp = path.string() + ".tmp." + std::to_string(::getpid());
-  if (const int err = try_write_file_atomically(path, data))
+  std::error_code ec;
+  try {
+    write_synced(path, tmp, parts, scenario_hash);
+  } catch (const Reject& r) {
+    fs::remove(tmp, ec);
     fail("cannot write checkpoint '{}': {}; the earlier checkpoints are kept", path.string(),
-         std::strerror(err));
+         r.reason);
+  }
   sync_directory(dir);
   // Keep the newest `keep`; drop what an interrupted write left.
   const std::vector<CheckpointFile> all = list_checkpoints(dir);
-  std::error_code ec;
   for (std::size_t k = static_cast<std::size_t>(std::max(keep, 1)); k < all.size(); ++k)
     fs::remove(all[k].path, ec);
   for (const auto& e : fs::directory_iterator(dir, ec)) {
@@ -434,7 +506,7 @@ RestoreReport restore_latest_checkpoint(const fs::path& dir, const CheckpointPar
   RestoreReport report;
   const std::vector<CheckpointFile> all = list_checkpoints(dir);
   if (all.empty())
-    fail("no checkpoint in '{}' (checkpoint_*.rcp): the run stopped before its first checkpoint",
+    fail("no checkpoint in '{}' (checkpoint_*.h5): the run stopped before its first checkpoint",
          dir.string());
   for (const CheckpointFile& c : all) {
     try {

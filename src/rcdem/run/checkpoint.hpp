@@ -2,13 +2,15 @@
 // Checkpoints of a run (issue 6; the format is documented in docs/checkpoint.md): the whole state
 // that a step changes (bodies, every contact and local point, interfaces, nodes, plates and their
 // contacts, pulled bars, time, step, energy) and the run loop's own state (peak, history rows,
-// crack record, snapshot series), in a versioned little-endian binary with a CRC-32 trailer.
+// crack record, snapshot series). The state is encoded as a versioned little-endian binary image
+// with a CRC-32 trailer (the format of .rcp files, still read) and written as HDF5
+// (run/checkpoint_hdf5.hpp: the same sections as groups of named datasets with their units).
 //
 // The specimen (particles, network, constants) is not stored: it is regenerated from the scenario
 // and its seed, and a fingerprint of it in the header must match. No random numbers are drawn
 // during stepping, so there is no generator state to keep.
 //
-// Files are DIR/checkpoint_<step, 12 digits>.rcp, written to a temporary name, synced and renamed;
+// Files are DIR/checkpoint_<step, 12 digits>.h5, written to a temporary name, synced and renamed;
 // the last two are kept. Loading takes the newest one that passes every check and falls back to
 // the older one, saying which file was rejected and why.
 #include <cstdint>
@@ -113,12 +115,18 @@ struct CheckpointColumn {
 // What encode_checkpoint would write for `parts`, column by column, in the file's order.
 std::vector<CheckpointColumn> checkpoint_layout(const CheckpointParts& parts);
 
-// The whole file, in memory. `scenario_hash` identifies the scenario's inputs (run.cpp).
+// The binary image (an .rcp file's bytes), in memory. `scenario_hash` identifies the scenario's
+// inputs (run.cpp).
 std::string encode_checkpoint(const CheckpointParts& parts, std::uint64_t scenario_hash);
 
 // Checks a file's framing (size, magic, version, byte order, length, checksum) and section
-// table; returns its header or throws rcdem::Error "checkpoint 'FILE' rejected: REASON".
+// table; returns its header or throws rcdem::Error "checkpoint 'FILE' rejected: REASON". Either
+// format: an HDF5 file is read into its binary image first.
 CheckpointHeader inspect_checkpoint(const std::filesystem::path& file);
+
+// A checkpoint file's binary image (an HDF5 file's converted back: what encode_checkpoint gave
+// for the state it holds), its framing and checksum checked; throws as inspect_checkpoint.
+std::string checkpoint_image(const std::filesystem::path& file);
 
 // Restores `parts` from one file. Every check (framing, checksum, scenario hash, specimen
 // fingerprint, every section's presence and size) passes before anything is changed; on failure
@@ -126,7 +134,8 @@ CheckpointHeader inspect_checkpoint(const std::filesystem::path& file);
 CheckpointHeader restore_checkpoint(const std::filesystem::path& file, const CheckpointParts& parts,
                                     std::uint64_t scenario_hash);
 
-// DIR/checkpoint_<step>.rcp, newest (highest step) first. Ignores temporary files.
+// DIR/checkpoint_<step>.h5 (and .rcp, the binary format before), newest (highest step) first.
+// Ignores temporary files.
 struct CheckpointFile {
   std::filesystem::path path;
   std::int64_t step = 0;

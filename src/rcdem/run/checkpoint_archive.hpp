@@ -329,7 +329,17 @@ struct Parsed {
   std::string data;
   CheckpointHeader header;
   std::map<std::string, Section> sections;
+  std::vector<std::string> order;  // the sections' names in the file's order
 };
+
+// The binary format's magic, version, byte-order mark, file size, step, time, hashes, section
+// count and writer: its first bytes up to the first section (run/checkpoint.cpp).
+std::string image_header(const CheckpointHeader& h);
+inline constexpr std::size_t kImageTrailer = 4;  // the CRC-32
+
+// Checks an image's framing (size, magic, version, byte order, length, checksum) and reads its
+// section table; throws Reject.
+Parsed parse_image(std::string data);
 
 // Reads what Saver wrote, section by section, after checking each one's kind, width and count;
 // with apply = false it only checks (a first pass, so that a bad file changes nothing).

@@ -123,7 +123,9 @@ bool is_output_name(const std::string& name) {
       "manifest.json.damaged"};
   if (name.find('\n') != std::string::npos) return false;
   if (exact.count(name)) return true;
-  if (starts_with(name, "checkpoint_") && name.find(".rcp") != std::string::npos) return true;
+  if (starts_with(name, "checkpoint_") &&
+      (name.find(".h5") != std::string::npos || name.find(".rcp") != std::string::npos))
+    return true;
   if (starts_with(name, "curve_") && ends_with(name, ".csv")) return true;
   if (starts_with(name, "iteration_")) return true;
   // An atomic write's temporary (NAME.tmp.PID) of one of the above.
