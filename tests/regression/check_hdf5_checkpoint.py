@@ -10,8 +10,10 @@ file"), on tests/regression/small_run.toml interrupted by SIGINT after its check
     image's CRC-32 is the file's 'crc32'; written as a .rcp file (the format before, still read)
     with the .h5 files removed, it resumes, and the run ends with the uninterrupted run's bytes;
   * damaged or foreign HDF5 files named like the newest checkpoint (a value changed, a dataset
-    removed, cut short, another program's file) are rejected with the reason, the previous
-    checkpoint is taken, and the run completes.
+    removed, HDF5's own metadata damaged, cut short, another program's file) are rejected with
+    the reason before HDF5 reads them (rcdem's header: size and CRC-32), and a dataset removed
+    behind a redone header by the layout's checks; the previous checkpoint is taken, and the run
+    completes.
 
 usage: check_hdf5_checkpoint.py RCDEM_BINARY SOURCE_DIR
 """
@@ -161,7 +163,25 @@ with tempfile.TemporaryDirectory() as tmp:
         shutil.copy(newest, p)
         with h5py.File(p, "r+") as f:
             del f["bodies/velocity"]
-    damaged("a dataset removed", removed_dataset, "malformed")
+    damaged("a dataset removed", removed_dataset, "checksum mismatch")
+
+    def resealed(p):
+        """... and rcdem's header made to match again: HDF5 reads it, rcdem's layout checks
+        reject it."""
+        removed_dataset(p)
+        data = bytearray(open(p, "rb").read())
+        data[16:24] = struct.pack("<Q", len(data))
+        data[12:16] = struct.pack("<I", zlib.crc32(data[24:]))
+        open(p, "wb").write(data)
+    damaged("a dataset removed, the header's checksum redone", resealed,
+            "malformed: group 'bodies''s datasets hold 19 words a record, its width is 22")
+
+    def flipped(p):
+        data = bytearray(open(newest, "rb").read())
+        for at in (600, 700, 2000):  # HDF5's superblock and root group
+            data[at] ^= 0x20
+        open(p, "wb").write(data)
+    damaged("HDF5's metadata damaged", flipped, "checksum mismatch")
 
     def cut_short(p):
         data = open(newest, "rb").read()

@@ -229,15 +229,19 @@ std::string read_checked(int fd, const fs::path& file) {
   if (!S_ISREG(st.st_mode)) throw Reject{"not a regular file"};
   char head[24];
   const std::size_t got = read_fully(fd, head, sizeof head);
-  const bool hdf5 = got >= 8 && std::memcmp(head, kHdf5Signature, 8) == 0;
+  if (got >= 8 && std::memcmp(head, kHdf5Signature, 8) == 0)
+    throw Reject{"an HDF5 file, but not an rcdem checkpoint (it lacks rcdem's header)"};
+  const bool hdf5 = got >= 8 && std::memcmp(head, kSealMagic, 8) == 0;
   if (got == sizeof head && !hdf5 && std::memcmp(head, kCheckpointMagic, 8) != 0)
-    throw Reject{
-        "not an rcdem checkpoint (it starts neither with 'RCDEMCKP' nor with HDF5's signature)"};
+    throw Reject{"not an rcdem checkpoint (it starts neither with 'RCDEMCKP' nor 'RCDEMHDF')"};
   const double memory =
       static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGESIZE));
   if (memory > 0.0 && static_cast<double>(st.st_size) > 0.5 * memory)
     throw Reject{fmt::format("{} bytes, more than half of this machine's memory", st.st_size)};
-  if (hdf5) return read_hdf5_checkpoint(file, static_cast<std::uint64_t>(st.st_size));
+  if (hdf5) {
+    check_seal(fd, static_cast<std::uint64_t>(st.st_size));
+    return read_hdf5_checkpoint(file, static_cast<std::uint64_t>(st.st_size));
+  }
   std::string data;
   try {
     data.assign(std::max(static_cast<std::size_t>(st.st_size), got), '\0');

@@ -1,8 +1,13 @@
 #include "rcdem/run/checkpoint_hdf5.hpp"
 
+#include <fcntl.h>
 #include <fmt/format.h>
 #include <hdf5.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <map>
@@ -217,7 +222,72 @@ void write_header(hid_t f, const Parsed& image) {
   put_number(f, "crc32", H5T_STD_U32LE, H5T_NATIVE_UINT32, crc);
 }
 
+// The CRC-32 of bytes [from, size) of `fd`.
+std::uint32_t crc_of(int fd, std::uint64_t from, std::uint64_t size) {
+  std::vector<char> buf(1 << 20);
+  std::uint32_t crc = 0;
+  for (std::uint64_t at = from; at < size;) {
+    const ssize_t n = ::pread(fd, buf.data(), std::min<std::uint64_t>(buf.size(), size - at),
+                              static_cast<off_t>(at));
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw Reject{fmt::format("cannot read it: {}", std::strerror(errno))};
+    if (n == 0) throw Reject{fmt::format("truncated: {} of {} bytes", at, size)};
+    crc = crc32(buf.data(), static_cast<std::size_t>(n), crc);
+    at += static_cast<std::uint64_t>(n);
+  }
+  return crc;
+}
+
+// Writes rcdem's header into the user block of the finished file.
+void seal(const std::filesystem::path& file) {
+  const int fd = ::open(file.c_str(), O_RDWR | O_CLOEXEC);
+  if (fd < 0) throw Reject{std::strerror(errno)};
+  try {
+    struct stat st {};
+    if (::fstat(fd, &st) != 0) throw Reject{std::strerror(errno)};
+    const auto size = static_cast<std::uint64_t>(st.st_size);
+    std::string head(kSealBytes, '\0');
+    std::memcpy(head.data(), kSealMagic, 8);
+    const std::uint32_t version = 1;
+    for (int k = 0; k < 4; ++k) head[8 + k] = static_cast<char>((version >> (8 * k)) & 0xFFU);
+    for (int k = 0; k < 8; ++k) head[16 + k] = static_cast<char>((size >> (8 * k)) & 0xFFU);
+    const std::string note = "\nrcdem checkpoint: HDF5 from byte 512 (docs/checkpoint.md)\n";
+    std::memcpy(head.data() + kSealCovered, note.data(), note.size());
+    if (::pwrite(fd, head.data(), head.size(), 0) != static_cast<ssize_t>(head.size()))
+      throw Reject{std::strerror(errno)};
+    const std::uint32_t crc = crc_of(fd, kSealCovered, size);
+    char le[4];
+    for (int k = 0; k < 4; ++k) le[k] = static_cast<char>((crc >> (8 * k)) & 0xFFU);
+    if (::pwrite(fd, le, 4, 12) != 4) throw Reject{std::strerror(errno)};
+    ::close(fd);
+  } catch (...) {
+    ::close(fd);
+    throw;
+  }
+}
+
 }  // namespace
+
+void check_seal(int fd, std::uint64_t size) {
+  unsigned char head[24];
+  if (size < kSealBytes || ::pread(fd, head, sizeof head, 0) != static_cast<ssize_t>(sizeof head))
+    throw Reject{
+        fmt::format("truncated: {} bytes, shorter than its header ({})", size, kSealBytes)};
+  const std::uint32_t version = load_le32(head + 8), stored = load_le32(head + 12);
+  const std::uint64_t written = load_le64(head + 16);
+  if (version != 1)
+    throw Reject{
+        fmt::format("rcdem's HDF5 header version {} is not one this rcdem reads (1)", version)};
+  if (size < written) throw Reject{fmt::format("truncated: {} of {} bytes", size, written)};
+  if (size > written)
+    throw Reject{
+        fmt::format("{} bytes where its header says {}: data after the end", size, written)};
+  const std::uint32_t computed = crc_of(fd, kSealCovered, size);
+  if (stored != computed)
+    throw Reject{fmt::format(
+        "checksum mismatch (stored CRC-32 {:08x}, computed {:08x}): the file is corrupted", stored,
+        computed)};
+}
 
 void write_hdf5_checkpoint(const std::filesystem::path& file, const Parsed& image,
                            const std::vector<CheckpointColumn>& layout) {
@@ -225,6 +295,7 @@ void write_hdf5_checkpoint(const std::filesystem::path& file, const Parsed& imag
   std::map<std::string, std::vector<const CheckpointColumn*>> columns;
   for (const CheckpointColumn& c : layout) columns[c.section].push_back(&c);
   const Handle fcpl = ordered(H5P_FILE_CREATE), gcpl = ordered(H5P_GROUP_CREATE);
+  H5Pset_userblock(fcpl, kSealBytes);
   Handle fapl{H5Pcreate(H5P_FILE_ACCESS), H5Pclose};
   // The 1.8 format: readable by every HDF5 since 1.8, and its metadata carries checksums.
   H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_V18);
@@ -247,6 +318,7 @@ void write_hdf5_checkpoint(const std::filesystem::path& file, const Parsed& imag
     }
   }
   must_succeed(f.close(), "cannot finish it");
+  seal(file);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -15,8 +15,19 @@ namespace rcdem::io::checkpoint_detail {
 
 struct Parsed;
 
-// HDF5's format signature, the first bytes of every HDF5 file without a user block.
+// HDF5's format signature, the first bytes of an HDF5 file without a user block.
 inline constexpr char kHdf5Signature[9] = "\x89HDF\r\n\x1a\n";
+
+// rcdem's header in the file's first 512 bytes (an HDF5 user block, which every HDF5 reader skips):
+// the magic, u32 version 1, u32 CRC-32 of every byte from byte 24 on, u64 the file's size, then a
+// line of text. HDF5 1.10 can crash on damaged metadata, so a file is handed to it only once its
+// size and checksum are right.
+inline constexpr char kSealMagic[9] = "RCDEMHDF";
+inline constexpr std::size_t kSealBytes = 512, kSealCovered = 24;
+
+// Checks the header of the open file `fd` of `size` bytes against its contents; throws Reject
+// ("truncated: ...", "checksum mismatch ...").
+void check_seal(int fd, std::uint64_t size);
 
 // Writes the checkpoint `image` to the new file `file` (an existing one is an error), naming each
 // section's columns by `layout` (checkpoint_layout of the parts the image was encoded from).
