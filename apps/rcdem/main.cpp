@@ -26,6 +26,7 @@
 #include "rcdem/core/error.hpp"
 #if defined(RCDEM_WITH_MPI)
 #include "rcdem/mpi/mpi_communicator.hpp"
+#include "rcdem/mpi/peer_watch.hpp"
 #endif
 #include "rcdem/core/progress.hpp"
 #include "rcdem/core/thread_waiting.hpp"
@@ -34,6 +35,7 @@
 #include "rcdem/run/distributed_run.hpp"
 #include "rcdem/run/run.hpp"
 #include "rcdem/run/run_directory.hpp"
+#include "rcdem/run/run_signals.hpp"
 #include "rcdem/specimens/specimen.hpp"
 #include "rcdem/study/study.hpp"
 
@@ -511,6 +513,14 @@ int main(int argc, char** argv) {
     if (!comm->leader()) return follow(*group, run_threads);
     g_ranks = group.get();
   }
+  std::optional<rcdem::PeerWatch> watch;
+  if (group)
+    watch.emplace(
+        [] {
+          const int sig = rcdem::pending_stop_signal();
+          return rcdem::StopRequest{sig, rcdem::signal_name(sig), rcdem::pending_stop_signal_ns()};
+        },
+        (resume.empty() ? out : resume).string());
 #endif
   try {
     if (*gen) return generate(scenario, out, force);

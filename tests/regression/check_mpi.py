@@ -13,7 +13,9 @@
   * a bad scenario under `mpirun -q` (without -q mpirun adds its own note on the exit code): one
     error line (from rank 0), a non-zero exit, within seconds; another command than `run`:
     refused in one line;
-  * a rank killed (SIGKILL) during the run: mpirun ends every rank within seconds, non-zero.
+  * a rank killed (SIGKILL) during the run: mpirun ends every rank within seconds, non-zero, and
+    rank 0 says so in one line (mpi/peer_watch: the launcher's SIGTERM came while it waited for
+    the rank that is gone).
 
 The ranks are oversubscribed (2 cores run 3 ranks); each rank runs one thread.
 
@@ -200,7 +202,8 @@ def rank_pids(mpirun_pid):
 
 def killed_rank(tmp):
     scenario = os.path.join(source, "examples/three_point_bending/study/quick/AN2_NL-B.toml")
-    p = subprocess.Popen(command(3, ["run", scenario, "-o", os.path.join(tmp, "killed")]),
+    p = subprocess.Popen(command(3, ["run", scenario, "-o", os.path.join(tmp, "killed")],
+                                 launcher=("-q",)),
                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env())
     t0 = time.time()
     ranks = {}
@@ -212,10 +215,10 @@ def killed_rank(tmp):
         os.kill(ranks[1], signal.SIGKILL)
     t1 = time.time()
     try:
-        p.communicate(timeout=30)
+        _, err = p.communicate(timeout=30)
     except subprocess.TimeoutExpired:
         p.kill()
-        p.communicate()
+        _, err = p.communicate()
     def alive():
         out = []
         for pid in ranks.values():
@@ -233,6 +236,10 @@ def killed_rank(tmp):
     check(1 in ranks and p.returncode not in (0, None) and time.time() - t1 < 30 and not left,
           f"rank 1 killed: every rank ends ({time.time() - t1:.1f} s, exit {p.returncode}, "
           f"left {left})")
+    lines = [line for line in err.splitlines() if line.strip()]
+    check(len(lines) == 1 and lines[0].startswith("rcdem: error: stopped by SIGTERM while rank 0")
+          and "one of them has ended" in lines[0] and "--resume" in lines[0],
+          f"... with one error line from rank 0 (mpirun -q): {lines}")
 
 
 def main():

@@ -2,14 +2,32 @@
 
 #include <mpi.h>
 
+#include <atomic>
+#include <chrono>
 #include <cstdlib>
 #include <limits>
 
 #include "rcdem/core/error.hpp"
+#include "rcdem/mpi/peer_watch.hpp"
 
 namespace rcdem {
 
 namespace {
+
+std::atomic<std::int64_t> g_waiting_since{0};
+
+// Marks the calling process as waiting in an MPI call while in scope (PeerWatch reads it).
+struct Waiting {
+  Waiting() {
+    g_waiting_since.store(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                              std::chrono::steady_clock::now().time_since_epoch())
+                              .count(),
+                          std::memory_order_relaxed);
+  }
+  ~Waiting() { g_waiting_since.store(0, std::memory_order_relaxed); }
+  Waiting(const Waiting&) = delete;
+  Waiting& operator=(const Waiting&) = delete;
+};
 
 // Launchers' environment: Open MPI's mpirun, PMIx (Slurm's srun, Open MPI 5), MPICH's Hydra.
 bool launched_by_mpi() {
@@ -48,6 +66,10 @@ struct Element {
 
 }  // namespace
 
+std::int64_t collective_waiting_since_ns() {
+  return g_waiting_since.load(std::memory_order_relaxed);
+}
+
 MpiSession::MpiSession(int& argc, char**& argv) {
   if (!launched_by_mpi()) return;
   int provided = 0;
@@ -77,6 +99,7 @@ MpiCommunicator::MpiCommunicator() {
 }
 
 void MpiCommunicator::allgather(void* data, std::size_t bytes, const std::vector<Index>& offsets) {
+  const Waiting waiting;
   std::vector<int> count, displ;
   counts_of(offsets, size_, count, displ);
   const Element e(bytes);
@@ -85,6 +108,7 @@ void MpiCommunicator::allgather(void* data, std::size_t bytes, const std::vector
 }
 
 void MpiCommunicator::gather(void* data, std::size_t bytes, const std::vector<Index>& offsets) {
+  const Waiting waiting;
   std::vector<int> count, displ;
   counts_of(offsets, size_, count, displ);
   const Element e(bytes);
@@ -99,11 +123,13 @@ void MpiCommunicator::gather(void* data, std::size_t bytes, const std::vector<In
 }
 
 void MpiCommunicator::broadcast(void* data, std::size_t bytes) {
+  const Waiting waiting;
   MPI_Bcast(data, static_cast<int>(bytes), MPI_BYTE, 0, MPI_COMM_WORLD);
 }
 
 void MpiCommunicator::gather_bytes(const std::vector<std::uint8_t>& local,
                                    std::vector<std::uint8_t>& all) {
+  const Waiting waiting;
   const int mine = static_cast<int>(local.size());
   count_.resize(static_cast<std::size_t>(size_));
   displ_.resize(count_.size());
@@ -125,6 +151,7 @@ void MpiCommunicator::all_to_all(const std::vector<std::uint8_t>& send,
                                  const std::vector<Index>& counts_out,
                                  std::vector<std::uint8_t>& recv,
                                  const std::vector<Index>& counts_in) {
+  const Waiting waiting;
   counts_of(counts_out, size_, scount_, sdispl_);
   counts_of(counts_in, size_, rcount_, rdispl_);
   MPI_Alltoallv(send.data(), scount_.data(), sdispl_.data(), MPI_BYTE, recv.data(), rcount_.data(),
@@ -132,6 +159,7 @@ void MpiCommunicator::all_to_all(const std::vector<std::uint8_t>& send,
 }
 
 void MpiCommunicator::sum(std::int64_t* values, int count) {
+  const Waiting waiting;
   MPI_Allreduce(MPI_IN_PLACE, values, count, MPI_INT64_T, MPI_SUM, MPI_COMM_WORLD);
 }
 

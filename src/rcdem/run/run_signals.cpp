@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <atomic>
 #include <cstring>
 #include <ctime>
 #include <string>
@@ -34,6 +35,9 @@ extern "C" void on_setup_signal(int sig) {
 constexpr long long kInsistAfterNs = 1'000'000'000;
 // Written and read only by the handlers, which block each other (install_stop_handler).
 timespec g_first_signal = {};
+// The same in ns for other threads (a lock-free atomic: async-signal-safe to store).
+std::atomic<std::int64_t> g_first_signal_ns{0};
+static_assert(std::atomic<std::int64_t>::is_always_lock_free);
 
 extern "C" void on_stop_signal(int sig) {
   timespec now = {};
@@ -48,12 +52,15 @@ extern "C" void on_stop_signal(int sig) {
     return;
   }
   g_first_signal = now;
+  g_first_signal_ns.store(now.tv_sec * 1'000'000'000LL + now.tv_nsec);
   g_signal = sig;
 }
 
 }  // namespace
 
 int pending_stop_signal() { return g_signal; }
+
+std::int64_t pending_stop_signal_ns() { return g_first_signal_ns.load(); }
 
 const char* signal_name(int sig) {
   return sig == SIGINT    ? "SIGINT"

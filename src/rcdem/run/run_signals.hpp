@@ -4,14 +4,17 @@
 // From the first step on the handler only raises a flag, which the loop reads after every step to
 // checkpoint and stop.
 #include <csignal>
+#include <cstdint>
 #include <filesystem>
 
 #include "rcdem/core/stop_signals.hpp"
 
 namespace rcdem {
 
-// The signal that asked the loop to stop (0: none).
+// The signal that asked the loop to stop (0: none), and when it arrived (steady clock, ns; for a
+// distributed run's watch over its ranks, mpi/peer_watch.hpp).
 int pending_stop_signal();
+std::int64_t pending_stop_signal_ns();
 
 const char* signal_name(int sig);
 
