@@ -14,18 +14,16 @@ tests/regression/small_run.toml interrupted after its first checkpoints:
 
 usage: check_resume_edges.py RCDEM_BINARY SOURCE_DIR
 """
-import glob
 import json
 import os
 import shutil
-import signal
 import subprocess
 import sys
 import tempfile
-import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from checklist import Checklist  # noqa: E402
+from interrupted_run import checkpoints, interrupted_run as interrupted  # noqa: E402
 
 rcdem, source = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
 checks = Checklist()
@@ -41,26 +39,8 @@ def resume(d):
         return None
 
 
-def checkpoints(d):
-    return sorted(glob.glob(os.path.join(d, "checkpoint_*.h5")))
-
-
 def interrupted_run(tmp, name):
-    """A run stopped by SIGINT after at least two checkpoints (every 200 steps)."""
-    scenario = os.path.join(tmp, name + ".toml")
-    open(scenario, "w").write(SCENARIO)
-    d = os.path.join(tmp, name)
-    p = subprocess.Popen([rcdem, "-q", "run", scenario, "-o", d, "--checkpoint-every", "200"],
-                         stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    t0 = time.time()
-    while p.poll() is None and time.time() - t0 < 120:
-        if os.path.isdir(d) and len(checkpoints(d)) >= 2:
-            p.send_signal(signal.SIGINT)
-            break
-        time.sleep(0.01)
-    p.wait(timeout=120)
-    assert len(checkpoints(d)) >= 2 and not os.path.exists(os.path.join(d, "summary.json")), d
-    return d, scenario
+    return interrupted(rcdem, SCENARIO, tmp, name)
 
 
 with tempfile.TemporaryDirectory() as tmp:
