@@ -223,7 +223,7 @@ std::size_t read_fully(int fd, char* data, std::size_t size) {
 // would block the resume) that starts like a checkpoint (binary, or HDF5: converted) and fits in
 // memory (a huge sparse file so named would exhaust it): anything else is rejected, and the
 // previous checkpoint taken.
-std::string read_checked(int fd, const fs::path& file) {
+std::string read_checked(int fd) {
   struct stat st {};
   if (::fstat(fd, &st) != 0) throw Reject{fmt::format("cannot read it: {}", std::strerror(errno))};
   if (!S_ISREG(st.st_mode)) throw Reject{"not a regular file"};
@@ -240,7 +240,9 @@ std::string read_checked(int fd, const fs::path& file) {
     throw Reject{fmt::format("{} bytes, more than half of this machine's memory", st.st_size)};
   if (hdf5) {
     check_seal(fd, static_cast<std::uint64_t>(st.st_size));
-    return read_hdf5_checkpoint(file, static_cast<std::uint64_t>(st.st_size));
+    // HDF5 opens the file checked, even if another has taken its name since.
+    return read_hdf5_checkpoint("/proc/self/fd/" + std::to_string(fd),
+                                static_cast<std::uint64_t>(st.st_size));
   }
   std::string data;
   try {
@@ -257,7 +259,7 @@ std::string read_whole(const fs::path& file) {
   const int fd = ::open(file.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
   if (fd < 0) throw Reject{fmt::format("cannot open it: {}", std::strerror(errno))};
   try {
-    std::string data = read_checked(fd, file);
+    std::string data = read_checked(fd);
     ::close(fd);
     return data;
   } catch (...) {
