@@ -200,8 +200,8 @@ void write_bytes(hid_t g, const std::string& section, const Section& s, const ch
   Handle d{must(H5Dcreate2(g, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
                 fmt::format("cannot create dataset '{}/{}'", section, name)),
            H5Dclose};
-  const std::string value(payload, s.count);
-  const char* p = value.c_str();
+  const std::string value = text ? std::string(payload, s.count) : std::string();
+  const char* p = value.c_str();  // a text is written from a NUL-terminated copy
   if (text || n > 0)
     must_succeed(H5Dwrite(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT,
                           text ? static_cast<const void*>(&p) : payload),
@@ -210,8 +210,8 @@ void write_bytes(hid_t g, const std::string& section, const Section& s, const ch
 
 void write_header(hid_t f, const Parsed& image) {
   const CheckpointHeader& h = image.header;
-  std::uint32_t crc = 0;
-  std::memcpy(&crc, image.data.data() + image.data.size() - kImageTrailer, 4);
+  const std::uint32_t crc = load_le32(reinterpret_cast<const unsigned char*>(
+      image.data.data() + image.data.size() - kImageTrailer));
   put_text(f, "format", kFormatName);
   put_number(f, "version", H5T_STD_U32LE, H5T_NATIVE_UINT32, h.version);
   put_number(f, "step", H5T_STD_I64LE, H5T_NATIVE_INT64, h.step);
