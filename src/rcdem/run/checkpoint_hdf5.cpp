@@ -299,6 +299,8 @@ void write_hdf5_checkpoint(const std::filesystem::path& file, const Parsed& imag
   Handle fapl{H5Pcreate(H5P_FILE_ACCESS), H5Pclose};
   // The 1.8 format: readable by every HDF5 since 1.8, and its metadata carries checksums.
   H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_V18);
+  // No lock: nothing else opens the temporary file, and some cluster file systems refuse locks.
+  H5Pset_file_locking(fapl, false, true);
   Handle f{must(H5Fcreate(file.c_str(), H5F_ACC_EXCL, fcpl, fapl), "cannot create it"), H5Fclose};
   write_header(f, image);
   for (const std::string& name : image.order) {
@@ -492,8 +494,8 @@ CheckpointHeader read_header(hid_t f, std::uint32_t& crc) {
 std::string read_hdf5_checkpoint(const std::filesystem::path& file, std::uint64_t file_size) {
   start_hdf5();
   Handle fapl{H5Pcreate(H5P_FILE_ACCESS), H5Pclose};
-  // Only reads: no lock needed (the run directory has its own), and none is possible on some
-  // network file systems.
+  // Only reads: no lock needed (the run directory has its own), and some cluster file systems
+  // refuse locks.
   H5Pset_file_locking(fapl, false, true);
   const hid_t opened = H5Fopen(file.c_str(), H5F_ACC_RDONLY, fapl);
   if (opened < 0) throw Reject{open_failure()};
