@@ -153,3 +153,15 @@ def test_damaged_checkpoints_are_refused_never_read_by_hdf5(small, tmp_path):
         with pytest.raises(rcdem.Error, match="rejected"):
             b.restore_checkpoint(bad)
     assert b.steps == 0 and np.array_equal(b.position, before)
+
+
+def test_a_checkpoint_reads_with_h5py_as_the_state(small, tmp_path):
+    """The HDF5 checkpoint's arrays are the simulation's, bit for bit, with their units."""
+    import h5py  # python3-h5py: scripts/setup.sh installs it
+    sim = rcdem.Simulation(small)
+    sim.step(150)
+    with h5py.File(sim.save_checkpoint(tmp_path), "r") as f:
+        assert f.attrs["step"] == 150 and f.attrs["time"] == sim.time
+        assert f["bodies/position"].attrs["unit"] == "m"
+        assert np.array_equal(f["bodies/position"][()], sim.position)
+        assert np.array_equal(f["contacts.points/record.history.damage"][()], sim.point_damage)
