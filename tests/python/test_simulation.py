@@ -126,7 +126,7 @@ def test_damaged_checkpoints_are_refused_never_read_by_hdf5(small, tmp_path):
     """600 random damages of an HDF5 checkpoint (bits flipped in its metadata or anywhere, bytes
     overwritten, cut short): each refused with rcdem.Error and the state left as it was. On the
     files of af4d780, before rcdem's header (size, CRC-32) was checked first, HDF5 1.10 crashed
-    within 70 such files."""
+    within 70 damages like these."""
     import random
 
     a = rcdem.Simulation(small)
