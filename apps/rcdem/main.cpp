@@ -518,7 +518,8 @@ int main(int argc, char** argv) {
     watch.emplace(
         [] {
           const int sig = rcdem::pending_stop_signal();
-          return rcdem::StopRequest{sig, rcdem::signal_name(sig), rcdem::pending_stop_signal_ns()};
+          return rcdem::StopRequest{sig, rcdem::signal_name(sig), rcdem::pending_stop_signal_ns(),
+                                    rcdem::stop_signal_taken()};
         },
         (resume.empty() ? out : resume).string());
 #endif

@@ -36,10 +36,9 @@ void PeerWatch::watch() {
   std::unique_lock<std::mutex> lock(mutex_);
   while (!wake_.wait_for(lock, std::chrono::milliseconds(100), [this] { return done_; })) {
     const StopRequest stop = stop_();
-    if (stop.signal == 0 || now_ns() - stop.at_ns < kGraceNs) continue;
-    // A wait that began after the signal is rank 0 acting on it (the checkpoint's gather).
+    if (stop.signal == 0 || stop.taken || now_ns() - stop.at_ns < kGraceNs) continue;
     const std::int64_t since = collective_waiting_since_ns();
-    if (since == 0 || since >= stop.at_ns) continue;
+    if (since == 0) continue;  // rank 0 works (a snapshot's files): it will take the signal
     const std::string line = fmt::format(
         "rcdem: error: stopped by {} while rank 0 had waited {:.1f} s for the other ranks: "
         "one of them has ended (the launcher's message names it); the run's last checkpoint is "

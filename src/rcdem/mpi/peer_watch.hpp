@@ -3,8 +3,9 @@
 // rank dies, the launcher ends the others: SIGTERM, then SIGKILL a second later (Open MPI's
 // default). Rank 0 acts on a stop signal between steps, which it never reaches while it waits in
 // a collective for the rank that is gone, so without this it would die by SIGKILL without a word.
-// This thread sees a stop signal arrive while rank 0 was already waiting in a collective and is
-// still waiting half a second later, and ends the process with one line saying so.
+// This thread sees a stop signal that the loop has not taken half a second after it arrived,
+// while rank 0 waits in a collective (the step it is in cannot end), and ends the process with one
+// line saying so.
 #include <condition_variable>
 #include <cstdint>
 #include <functional>
@@ -17,11 +18,13 @@ namespace rcdem {
 // When (steady clock, ns) this process began waiting in the MPI call it is in; 0: in none.
 std::int64_t collective_waiting_since_ns();
 
-// A stop signal received (0: none), its name, and when (steady clock, ns).
+// A stop signal received (0: none), its name, when (steady clock, ns), and whether the run loop
+// has taken it (it acts on it: its checkpoint's gather may wait as long as it needs).
 struct StopRequest {
   int signal = 0;
   const char* name = "";
   std::int64_t at_ns = 0;
+  bool taken = false;
 };
 
 class PeerWatch {
@@ -32,7 +35,7 @@ class PeerWatch {
   PeerWatch(const PeerWatch&) = delete;
   PeerWatch& operator=(const PeerWatch&) = delete;
 
-  // How long after the signal a wait that began before it counts as a rank gone.
+  // How long after the signal a step that has not ended counts as a rank gone.
   static constexpr std::int64_t kGraceNs = 500'000'000;
 
  private:

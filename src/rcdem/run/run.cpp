@@ -439,7 +439,7 @@ bool RunLoop::run(const std::function<void(const Simulation&)>& on_step) {
     }
     const auto now = std::chrono::steady_clock::now();
     if (checkpoint_due(view.step, now)) checkpoint(now);
-    if ((signal_ = pending_stop_signal()) != 0 || decision == RunDecision::Interrupt) {
+    if ((signal_ = take_stop_signal()) != 0 || decision == RunDecision::Interrupt) {
       // Interrupted: the state after this whole step is saved, with what the run has so far.
       if (checkpointed_step_ != view.step) checkpoint(now);
       progress.close();

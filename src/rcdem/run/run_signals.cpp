@@ -35,8 +35,10 @@ extern "C" void on_setup_signal(int sig) {
 constexpr long long kInsistAfterNs = 1'000'000'000;
 // Written and read only by the handlers, which block each other (install_stop_handler).
 timespec g_first_signal = {};
-// The same in ns for other threads (a lock-free atomic: async-signal-safe to store).
+// The same in ns for other threads (a lock-free atomic: async-signal-safe to store), on
+// CLOCK_MONOTONIC, the clock of std::chrono::steady_clock on Linux.
 std::atomic<std::int64_t> g_first_signal_ns{0};
+std::atomic<bool> g_taken{false};
 static_assert(std::atomic<std::int64_t>::is_always_lock_free);
 
 extern "C" void on_stop_signal(int sig) {
@@ -60,7 +62,15 @@ extern "C" void on_stop_signal(int sig) {
 
 int pending_stop_signal() { return g_signal; }
 
+int take_stop_signal() {
+  const int sig = g_signal;
+  if (sig != 0) g_taken.store(true);
+  return sig;
+}
+
 std::int64_t pending_stop_signal_ns() { return g_first_signal_ns.load(); }
+
+bool stop_signal_taken() { return g_taken.load(); }
 
 const char* signal_name(int sig) {
   return sig == SIGINT    ? "SIGINT"
@@ -72,6 +82,7 @@ const char* signal_name(int sig) {
 SignalGuard::SignalGuard(bool on, const std::filesystem::path& lock, bool resuming) : on_(on) {
   if (!on_) return;
   g_signal = 0;
+  g_taken.store(false);
   g_resuming = resuming ? 1 : 0;
   const std::string l = lock.string();
   if (l.size() < sizeof g_lock_path) std::memcpy(g_lock_path, l.c_str(), l.size() + 1);

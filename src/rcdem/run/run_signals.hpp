@@ -11,10 +11,13 @@
 
 namespace rcdem {
 
-// The signal that asked the loop to stop (0: none), and when it arrived (steady clock, ns; for a
-// distributed run's watch over its ranks, mpi/peer_watch.hpp).
+// The signal that asked the loop to stop (0: none); the loop reads it with take_stop_signal,
+// which also marks it taken: the loop is acting on it. For a distributed run's watch over its
+// ranks (mpi/peer_watch.hpp): when it arrived (steady clock, ns) and whether it was taken.
 int pending_stop_signal();
+int take_stop_signal();
 std::int64_t pending_stop_signal_ns();
+bool stop_signal_taken();
 
 const char* signal_name(int sig);
 
