@@ -79,7 +79,6 @@ constexpr std::uint32_t kByteOrderMark = 0x01020304U;
 // fingerprint 8, section count 4, writer length 4.
 constexpr std::size_t kFixedHeader = 64;
 constexpr std::size_t kTrailer = kImageTrailer;
-constexpr std::size_t kFileSizeAt = 16, kSectionCountAt = 56;
 
 // The state, part by part, each part's sections written by its own serialize() (docs/checkpoint.md
 // lists them in this order).
@@ -181,10 +180,14 @@ std::string image_header(const CheckpointHeader& h) {
 
 }  // namespace checkpoint_detail
 
-std::string encode_checkpoint(const CheckpointParts& parts, std::uint64_t scenario_hash) {
+namespace {
+
+// The image with its section table, as parse_image would read it back.
+Parsed encode_image(const CheckpointParts& parts, std::uint64_t scenario_hash) {
   if (!parts.sim) throw std::logic_error("encode_checkpoint: no simulation");
   const Simulation& sim = *parts.sim;
-  CheckpointHeader h;
+  Parsed f;
+  CheckpointHeader& h = f.header;
   h.version = kCheckpointVersion;
   h.step = sim.steps();
   h.time = sim.time();
@@ -198,10 +201,23 @@ std::string encode_checkpoint(const CheckpointParts& parts, std::uint64_t scenar
   parts.sim->catch_up_condensed_points();
   Saver saver(o);
   walk(saver, parts);
-  o.put_u32_at(kSectionCountAt, saver.sections());
-  o.put_u64_at(kFileSizeAt, o.buf.size() + kTrailer);
+  h.sections = static_cast<std::uint32_t>(saver.sections().size());
+  h.file_size = o.buf.size() + kTrailer;
+  o.put_u32_at(kImageSectionCountAt, h.sections);
+  o.put_u64_at(kImageFileSizeAt, h.file_size);
   o.u32(crc32(o.buf.data(), o.buf.size()));
-  return std::move(o.buf);
+  for (const auto& [name, section] : saver.sections()) {
+    f.sections.emplace(name, section);
+    f.order.push_back(name);
+  }
+  f.data = std::move(o.buf);
+  return f;
+}
+
+}  // namespace
+
+std::string encode_checkpoint(const CheckpointParts& parts, std::uint64_t scenario_hash) {
+  return encode_image(parts, scenario_hash).data;
 }
 
 namespace {
@@ -469,8 +485,7 @@ void write_synced(const fs::path& path, const fs::path& tmp, const CheckpointPar
                   std::uint64_t scenario_hash) {
   std::error_code ec;
   fs::remove(tmp, ec);  // left by an earlier process of the same id
-  write_hdf5_checkpoint(tmp, parse_image(encode_checkpoint(parts, scenario_hash)),
-                        checkpoint_layout(parts));
+  write_hdf5_checkpoint(tmp, encode_image(parts, scenario_hash), checkpoint_layout(parts));
   const int fd = ::open(tmp.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd < 0 || ::fsync(fd) != 0) {
     const int err = errno;

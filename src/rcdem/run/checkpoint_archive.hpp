@@ -180,11 +180,19 @@ void put_column(R& r, const Col& c, std::size_t i) {
   r.put(named(c.name, c.unit, c(i)));
 }
 
+// A section of an image: its kind, width, record count and where its payload starts.
+struct Section {
+  std::uint32_t kind = 0, width = 0;
+  std::uint64_t count = 0;
+  std::size_t offset = 0;
+};
+
 class Saver {
  public:
   static constexpr bool loading = false;
   explicit Saver(Out& o) : o_(o) {}
-  std::uint32_t sections() const { return sections_; }
+  // The sections written, in order (what parse_image would read back).
+  const std::vector<std::pair<std::string, Section>>& sections() const { return sections_; }
 
   // n records, record i being column(i) for each column in turn.
   template <class... Columns>
@@ -241,10 +249,10 @@ class Saver {
     o_.u32(kind);
     o_.u32(width);
     o_.u64(n);
-    ++sections_;
+    sections_.push_back({name, Section{kind, width, n, o_.buf.size()}});
   }
   Out& o_;
-  std::uint32_t sections_ = 0;
+  std::vector<std::pair<std::string, Section>> sections_;
 };
 
 // Names each word of a record: the path of the names around it ("history.fs.t1") and the
@@ -318,12 +326,6 @@ class Describer {
   std::vector<CheckpointColumn>& out_;
 };
 
-struct Section {
-  std::uint32_t kind = 0, width = 0;
-  std::uint64_t count = 0;
-  std::size_t offset = 0;
-};
-
 // A whole file in memory, its framing checked.
 struct Parsed {
   std::string data;
@@ -336,6 +338,7 @@ struct Parsed {
 // count and writer: its first bytes up to the first section (run/checkpoint.cpp).
 std::string image_header(const CheckpointHeader& h);
 inline constexpr std::size_t kImageTrailer = 4;  // the CRC-32
+inline constexpr std::size_t kImageFileSizeAt = 16, kImageSectionCountAt = 56;
 
 // Checks an image's framing (size, magic, version, byte order, length, checksum) and reads its
 // section table; throws Reject.

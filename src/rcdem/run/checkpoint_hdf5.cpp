@@ -246,19 +246,18 @@ void seal(const std::filesystem::path& file) {
     struct stat st {};
     if (::fstat(fd, &st) != 0) throw Reject{std::strerror(errno)};
     const auto size = static_cast<std::uint64_t>(st.st_size);
-    std::string head(kSealBytes, '\0');
-    std::memcpy(head.data(), kSealMagic, 8);
-    const std::uint32_t version = 1;
-    for (int k = 0; k < 4; ++k) head[8 + k] = static_cast<char>((version >> (8 * k)) & 0xFFU);
-    for (int k = 0; k < 8; ++k) head[16 + k] = static_cast<char>((size >> (8 * k)) & 0xFFU);
+    Out head;
+    head.bytes(kSealMagic, 8);
+    head.u32(1);  // the header's version
+    head.u32(0);  // its CRC-32, set below over what follows it
+    head.u64(size);
     const std::string note = "\nrcdem checkpoint: HDF5 from byte 512 (docs/checkpoint.md)\n";
-    std::memcpy(head.data() + kSealCovered, note.data(), note.size());
-    if (::pwrite(fd, head.data(), head.size(), 0) != static_cast<ssize_t>(head.size()))
+    head.bytes(note.data(), note.size());
+    head.buf.resize(kSealBytes, '\0');
+    if (::pwrite(fd, head.buf.data(), head.buf.size(), 0) != static_cast<ssize_t>(kSealBytes))
       throw Reject{std::strerror(errno)};
-    const std::uint32_t crc = crc_of(fd, kSealCovered, size);
-    char le[4];
-    for (int k = 0; k < 4; ++k) le[k] = static_cast<char>((crc >> (8 * k)) & 0xFFU);
-    if (::pwrite(fd, le, 4, 12) != 4) throw Reject{std::strerror(errno)};
+    head.put_u32_at(12, crc_of(fd, kSealCovered, size));
+    if (::pwrite(fd, head.buf.data() + 12, 4, 12) != 4) throw Reject{std::strerror(errno)};
     ::close(fd);
   } catch (...) {
     ::close(fd);
@@ -462,14 +461,6 @@ void read_bytes(hid_t g, const SectionPlan& s, char* payload) {
         fmt::format("malformed: text '{}' has {} bytes, its section {}", where, n, s.count)};
 }
 
-void append_u32(std::string& out, std::uint32_t v) {
-  for (int k = 0; k < 4; ++k) out.push_back(static_cast<char>((v >> (8 * k)) & 0xFFU));
-}
-void append_u64(std::string& out, std::uint64_t v) {
-  append_u32(out, static_cast<std::uint32_t>(v));
-  append_u32(out, static_cast<std::uint32_t>(v >> 32));
-}
-
 CheckpointHeader read_header(hid_t f, std::uint32_t& crc) {
   const std::string where = "the file";
   if (H5Aexists(f, "format") <= 0 || text_attribute(f, "format", where) != kFormatName)
@@ -511,28 +502,28 @@ std::string read_hdf5_checkpoint(const std::filesystem::path& file, std::uint64_
       throw Reject{fmt::format("malformed: its sections hold more than its {} bytes", file_size)};
   }
   h.sections = static_cast<std::uint32_t>(plan.size());
-  std::string image = image_header(h);
-  std::uint64_t size = image.size() + payload + kImageTrailer;
+  Out image;
+  image.buf = image_header(h);
+  std::uint64_t size = image.buf.size() + payload + kImageTrailer;
   for (const SectionPlan& s : plan) size += 4 + s.name.size() + 16;
-  h.file_size = size;
-  image = image_header(h);
-  image.reserve(static_cast<std::size_t>(size));
+  image.put_u64_at(kImageFileSizeAt, size);
+  image.buf.reserve(static_cast<std::size_t>(size));
   for (const SectionPlan& s : plan) {
-    append_u32(image, static_cast<std::uint32_t>(s.name.size()));
-    image += s.name;
-    append_u32(image, s.kind == "words" ? kKindWords : kKindBytes);
-    append_u32(image, s.kind == "words" ? s.width : 1);
-    append_u64(image, s.count);
-    const std::size_t at = image.size();
-    image.resize(at + static_cast<std::size_t>(s.payload_bytes()));
+    image.u32(static_cast<std::uint32_t>(s.name.size()));
+    image.bytes(s.name.data(), s.name.size());
+    image.u32(s.kind == "words" ? kKindWords : kKindBytes);
+    image.u32(s.kind == "words" ? s.width : 1);
+    image.u64(s.count);
+    const std::size_t at = image.buf.size();
+    image.buf.resize(at + static_cast<std::size_t>(s.payload_bytes()));
     Handle g{H5Gopen2(f, s.name.c_str(), H5P_DEFAULT), H5Gclose};
     if (s.kind == "words")
-      read_words(g, s, image.data() + at);
+      read_words(g, s, image.buf.data() + at);
     else
-      read_bytes(g, s, image.data() + at);
+      read_bytes(g, s, image.buf.data() + at);
   }
-  append_u32(image, crc);
-  return image;
+  image.u32(crc);
+  return std::move(image.buf);
 }
 
 }  // namespace rcdem::io::checkpoint_detail
