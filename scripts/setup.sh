@@ -5,15 +5,19 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+# What building and running the program needs (the quick start installs only these)...
 PACKAGES=(build-essential cmake ninja-build pkg-config git
           voro++-dev libeigen3-dev libtomlplusplus-dev libcli11-dev libfmt-dev nlohmann-json3-dev
-          libgtest-dev libgmock-dev libbenchmark-dev libmetis-dev libhdf5-dev
-          python3 python3-dev python3-numpy python3-scipy python3-matplotlib python3-meshio
+          libhdf5-dev python3-matplotlib)
+# ...and what the tests, benchmarks, Python module and package need besides.
+[ $# -eq 0 ] && PACKAGES+=(libgtest-dev libgmock-dev libbenchmark-dev libmetis-dev
+          python3 python3-dev python3-numpy python3-scipy python3-meshio
           python3-pytest python3-h5py hdf5-tools pybind11-dev help2man)
 # The distributed run's build (CMakePresets.json "mpi"; the test command builds it): Open MPI,
 # and the HDF5 library built with it.
 [ "${RCDEM_SETUP_MPI:-0}" = 1 ] && PACKAGES+=(libopenmpi-dev openmpi-bin libhdf5-openmpi-dev)
 
+BUILD_DIR=${BUILD_DIR:-build}
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -26,9 +30,17 @@ if [ ${#missing[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
-BUILD_DIR=${BUILD_DIR:-build}
 # The portable reference build (CMakePresets.json "release"); RCDEM_NATIVE=ON for -march=native.
+# A build of every target builds the tests, benchmarks and module; a first build of named targets
+# configures without them (their packages may be missing); a later full build turns them on.
+if [ $# -eq 0 ]; then
+  PARTS=(-DRCDEM_BUILD_TESTS=ON -DRCDEM_BUILD_BENCH=ON -DRCDEM_PYTHON=ON)
+elif [ ! -f "$BUILD_DIR/CMakeCache.txt" ]; then
+  PARTS=(-DRCDEM_BUILD_TESTS=OFF -DRCDEM_BUILD_BENCH=OFF -DRCDEM_PYTHON=OFF)
+else
+  PARTS=()
+fi
 cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release -DRCDEM_NATIVE="${RCDEM_NATIVE:-OFF}" \
-      ${RCDEM_WERROR:+-DRCDEM_WERROR=$RCDEM_WERROR} >/dev/null
+      ${RCDEM_WERROR:+-DRCDEM_WERROR=$RCDEM_WERROR} "${PARTS[@]}" >/dev/null
 # Arguments name the targets to build (the quick start needs only `rcdem`); none builds all.
 cmake --build "$BUILD_DIR" -j "$(nproc)" ${1:+--target "$@"}
