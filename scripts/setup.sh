@@ -8,10 +8,10 @@ cd "$(dirname "$0")/.."
 # What building and running the program needs (the quick start installs only these)...
 PACKAGES=(build-essential cmake ninja-build pkg-config git
           voro++-dev libeigen3-dev libtomlplusplus-dev libcli11-dev libfmt-dev nlohmann-json3-dev
-          libhdf5-dev python3-matplotlib)
+          libhdf5-dev python3-matplotlib python3-meshio)
 # ...and what the tests, benchmarks, Python module and package need besides.
 [ $# -eq 0 ] && PACKAGES+=(libgtest-dev libgmock-dev libbenchmark-dev libmetis-dev
-          python3 python3-dev python3-numpy python3-scipy python3-meshio
+          python3 python3-dev python3-numpy python3-scipy
           python3-pytest python3-h5py hdf5-tools pybind11-dev help2man)
 # The distributed run's build (CMakePresets.json "mpi"; the test command builds it): Open MPI,
 # and the HDF5 library built with it.
