@@ -32,11 +32,12 @@ fi
 
 # The portable reference build (CMakePresets.json "release"); RCDEM_NATIVE=ON for -march=native.
 # A build of every target builds the tests, benchmarks and module; a first build of named targets
-# configures without them (their packages may be missing); a later full build turns them on.
+# configures without them (their packages may be missing), as a unity build (the library in half
+# the time, the same bits); a later full build turns them on and keeps the library as it is.
 if [ $# -eq 0 ]; then
   PARTS=(-DRCDEM_BUILD_TESTS=ON -DRCDEM_BUILD_BENCH=ON -DRCDEM_PYTHON=ON)
 elif [ ! -f "$BUILD_DIR/CMakeCache.txt" ]; then
-  PARTS=(-DRCDEM_BUILD_TESTS=OFF -DRCDEM_BUILD_BENCH=OFF -DRCDEM_PYTHON=OFF)
+  PARTS=(-DRCDEM_BUILD_TESTS=OFF -DRCDEM_BUILD_BENCH=OFF -DRCDEM_PYTHON=OFF -DRCDEM_UNITY_BUILD=ON)
 else
   PARTS=()
 fi
