@@ -16,10 +16,14 @@ trap 'umount "$root/proc" 2> /dev/null || true' EXIT
 git clone -q "$repo" "$root/root/rcdem"
 cp /etc/resolv.conf "$root/etc/resolv.conf"
 mount -t proc proc "$root/proc"
-echo "clean root: $(chroot "$root" /bin/bash -c 'which c++ cmake python3 rcdem || true' | wc -l) of c++, cmake, python3, rcdem found"
+# A machine with a clone has git: installed before the clock starts.
+chroot "$root" /bin/bash -c 'apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends git' > "$root.git.log" 2>&1
+echo "clean root: $(chroot "$root" /bin/bash -c 'which c++ cmake python3 rcdem || true' | wc -l) of c++, cmake, python3, rcdem found; git $(chroot "$root" git --version | cut -d' ' -f3)"
 echo "machine: nproc $(nproc), $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), commit $(git -C "$repo" rev-parse --short HEAD), $(date -u '+%F %H:%M UTC')"
 start=$(date +%s)
-chroot "$root" /bin/bash -c 'cd /root/rcdem && bash scripts/quickstart.sh' > "$root.quickstart.log" 2>&1
+# Each line of the log starts with the seconds since the start.
+chroot "$root" /bin/bash -c 'cd /root/rcdem && bash scripts/quickstart.sh' 2>&1 |
+  while IFS= read -r line; do echo "$(( $(date +%s) - start )) $line"; done > "$root.quickstart.log"
 end=$(date +%s)
 tail -4 "$root.quickstart.log"
 grep -m1 "peak\|AN0" "$root/root/rcdem/results/quick_study/table3.md" || true
