@@ -74,7 +74,7 @@ struct SolverSettings {
   Real bar_rotational_inertia_scaling = 1.0;       // the cylinders' moments of inertia only
   Real particle_rotational_inertia_scaling = 1.0;  // the particles' moments of inertia only
   bool condense_elastic_contacts = true;           // contact/elastic_condensation.hpp
-  bool hold_unloading_contacts = false;            // contact/held_contacts.hpp
+  bool hold_unloading_contacts = true;             // contact/held_contacts.hpp
 };
 
 // loading.adaptive_rate and its bounds (solver/loading_rate.hpp).

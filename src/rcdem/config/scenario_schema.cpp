@@ -366,9 +366,9 @@ void declare_solver(Declarations& s) {
               "With condense_elastic_contacts: evaluate a damaged concrete contact whose local "
               "points all stay inside their envelopes (unloading or reloading elastically) from "
               "sums kept since it entered them, instead of visiting its points. The same results "
-              "to rounding; a cracked specimen's step is faster. Off by default: snapshots and "
-              "checkpoints release the held contacts, so with it on the output schedule changes "
-              "results at the level of rounding (docs/model.md)."),
+              "to rounding; a cracked specimen's step is faster, and snapshots and checkpoints "
+              "change nothing it computes (docs/model.md). false: visit every damaged contact's "
+              "points every step."),
         Need::Default, &S::solver, &V::hold_unloading_contacts);
 }
 

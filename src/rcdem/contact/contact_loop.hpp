@@ -271,7 +271,7 @@ template <typename Law, bool kPointsOnly = false>
 }
 
 // Brings held contact c's points up to the evaluation `in` (the last one that held it), in the
-// frame stored by that evaluation, and releases it.
+// frame stored by that evaluation.
 template <typename Law>
 void catch_up_held(const Law& law, const ContactInputs& in, ContactState& cs,
                    ElasticCondensation& cond, Index c) {
@@ -281,7 +281,18 @@ void catch_up_held(const Law& law, const ContactInputs& in, ContactState& cs,
   f.intact = false;
   frame_kinematics(in, &cond, c, f);
   contact_points<Law, true>(law, in, cs, &cond, c, f);
-  cond.held.held[c] = 0;
+}
+
+// Releases held contact c, its points brought up to the last evaluation `in` from their histories
+// at entry (put back first if a read saved them), unless a read since that evaluation has done so.
+template <typename Law>
+void release_held(const Law& law, const ContactInputs& in, ContactState& cs,
+                  ElasticCondensation& cond, Index c) {
+  HeldContacts& h = cond.held;
+  const Index begin = in.net.point_begin[c];
+  h.take_entry(c, h.current ? nullptr : cs.point.data() + begin, in.net.point_begin[c + 1] - begin);
+  if (!h.current) catch_up_held(law, in, cs, cond, c);
+  h.held[static_cast<std::size_t>(c)] = 0;
 }
 
 // The elastic energies of the visited contacts `visit[0, count)`, from their points, just after
@@ -349,7 +360,7 @@ template <typename Law>
       continue;
     }
     prefetch_points(in.net, cs.point, c);
-    catch_up_held(law, previous, cs, cond, c);
+    release_held(law, previous, cs, cond, c);
     contact_frame(in, cs, &cond, c, frames[c - begin]);
     visit[visits++] = c;
   }
@@ -475,6 +486,7 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
         cs.block_damage[begin / CondensedBlock::kSize] = damage;
         cs.block_friction[begin / CondensedBlock::kSize] = friction;
       });
+  cond->held.current = false;
   cs.tally_transitions(kBlock);
 }
 
@@ -509,17 +521,22 @@ void evaluate_contacts(const Law& law, const ContactNetwork& net, const Bodies& 
 
 // Brings the histories of the contacts condensed at the last evaluation up to date, from that
 // evaluation's kinematics (`in`): what the point loop would have stored (the law's elastic update:
-// un, us, fn = kn un, fs = -ks us, their maxima). Changes nothing the next steps compute.
+// un, us, fn = kn un, fs = -ks us, their maxima); and the held contacts' from their entry's,
+// which stay held (held_contacts.hpp). Changes nothing the next steps compute.
 template <typename Law>
 void catch_up_condensed(const Law& law, const ContactInputs& in, ContactState& cs,
                         ElasticCondensation& cond) {
   if (!cond.any_condensed) return;
+  HeldContacts& h = cond.held;
+  const bool catch_up_held_ones = kHoldableLaw<Law> && !h.current;
+  if (catch_up_held_ones) h.keep_entries(in.net.point_begin.data(), cs.point.data());
   parallel_for(in.net.contact_count(), [&](Index c) {
-    if (kHoldableLaw<Law> && cond.held.held[c]) catch_up_held(law, in, cs, cond, c);
+    if (catch_up_held_ones && h.held[c]) catch_up_held(law, in, cs, cond, c);
     if (!cond.condensed[c]) return;
     evaluate_contact<Law, true>(law, in, cs, &cond, c);
     cond.condensed[c] = 0;
   });
+  h.current = true;
   cond.any_condensed = false;
 }
 

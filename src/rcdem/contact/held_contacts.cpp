@@ -17,6 +17,7 @@ static_assert(HeldContacts::kBlock == CondensedBlock::kSize,
 
 void HeldContacts::resize(Index contacts) {
   held.assign(static_cast<std::size_t>(contacts), 0);
+  saved.assign(static_cast<std::size_t>(contacts), 0);
   block.assign(static_cast<std::size_t>((contacts + kBlock - 1) / kBlock), {});
 }
 
@@ -34,7 +35,40 @@ Index HeldContacts::count() const {
   return static_cast<Index>(std::count(held.begin(), held.end(), std::uint8_t{1}));
 }
 
-void HeldContacts::clear() { std::fill(held.begin(), held.end(), std::uint8_t{0}); }
+void HeldContacts::clear() {
+  std::fill(held.begin(), held.end(), std::uint8_t{0});
+  std::fill(saved.begin(), saved.end(), std::uint8_t{0});
+  entry.clear();
+  current = false;
+}
+
+void HeldContacts::keep_entries(const Index* point_begin, LocalPointRecord* points) {
+  std::erase_if(entry, [this](const auto& e) { return !saved[static_cast<std::size_t>(e.first)]; });
+  for (std::size_t c = 0; c < held.size(); ++c) {
+    if (!held[c]) continue;
+    const auto ci = static_cast<Index>(c);
+    LocalPointRecord* first = points + point_begin[ci];
+    const Index count = point_begin[ci + 1] - point_begin[ci];
+    if (saved[c]) {
+      const std::vector<PlanePointState>& e = entry.at(ci);
+      for (Index m = 0; m < count; ++m) first[m].history = e[static_cast<std::size_t>(m)];
+      continue;
+    }
+    std::vector<PlanePointState>& e = entry[ci];
+    e.resize(static_cast<std::size_t>(count));
+    for (Index m = 0; m < count; ++m) e[static_cast<std::size_t>(m)] = first[m].history;
+    saved[c] = 1;
+  }
+}
+
+void HeldContacts::take_entry(Index c, LocalPointRecord* points, Index count) {
+  const auto i = static_cast<std::size_t>(c);
+  if (!saved[i]) return;
+  saved[i] = 0;
+  if (!points) return;
+  const std::vector<PlanePointState>& e = entry.find(c)->second;
+  for (Index m = 0; m < count; ++m) points[m].history = e[static_cast<std::size_t>(m)];
+}
 
 namespace {
 

@@ -34,15 +34,19 @@
 // except a maximum below its elastic limit, which nothing reads and which a held step does not
 // raise), then goes through its points as usual. Held or not, the law's result is the same to
 // rounding; what changes is the arithmetic (sums, and the catch-up's one step for several).
-// Reading the points (snapshots, checkpoints: Simulation::contacts()) catches the held contacts
-// up and releases them, so a restart gives the bits of the run that wrote the checkpoint, but the
-// output schedule changes a run at the level of rounding: solver.hold_unloading_contacts is off by
-// default (docs/model.md).
+// Reading the points (snapshots, checkpoints: Simulation::contacts()) brings a held contact's
+// points up to the last evaluation the same way, from their histories at entry, which the read
+// first saves (HeldContacts::entry), and keeps it held: when it leaves its room, its points are
+// caught up from those saved histories again. So a run computes the same bits whenever and however
+// often it is read, and a checkpoint holds the held contacts, their sums and their entry histories
+// beside the points (caught up): a restart continues with the bits of the run that wrote it.
 #include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 #include "rcdem/contact/contact_frame.hpp"
 #include "rcdem/contact/contact_state.hpp"
+#include "rcdem/core/archive.hpp"
 #include "rcdem/core/types.hpp"
 
 namespace rcdem {
@@ -59,6 +63,18 @@ struct HeldSums {
   Real disp[9];         // disp(t0), row-major
 };
 
+// The checkpoint's columns of HeldSums (core/archive.hpp), in its order.
+template <class Record, class S>
+void archive_fields(Record& r, S& h) {
+  for (auto& v : h.phi0) r.put(named("phi0", "N", v));
+  for (auto& v : h.q) r.put(named("q", "N*m", v));
+  r.put(named("energy0", "J", h.energy0));
+  r.put(named("room_n", "m", h.room_n));
+  r.put(named("room_s", "m", h.room_s));
+  for (auto& v : h.disp0) r.put(named("disp0", "m", v));
+  for (auto& v : h.disp) r.put(named("disp", "1", v));
+}
+
 // The held contacts of a network: a flag per contact and, per block of kBlock contacts (the
 // contact loop's, CondensedBlock::kSize) that has held one, the block's sums (allocated by the
 // thread that evaluates the block, so only cracked regions take memory).
@@ -67,12 +83,37 @@ struct HeldContacts {
   bool enabled = false;                      // solver.hold_unloading_contacts
   std::vector<std::uint8_t> held;            // per contact
   std::vector<std::vector<HeldSums>> block;  // per block, empty until one of its contacts is held
+  // A read's catch-up (above): per contact, whether its points' histories at entry are in `entry`
+  // (changed only between steps, looked up by the step's threads); and whether every held
+  // contact's points stand at the last evaluation (a read since the last step: a release then
+  // has nothing to catch up).
+  std::vector<std::uint8_t> saved;
+  std::unordered_map<Index, std::vector<PlanePointState>> entry;
+  bool current = false;
 
   void resize(Index contacts);
   HeldSums& sums(Index c);  // c's, its block allocated if needed (only its block's thread)
   const HeldSums& sums(Index c) const;
   Index count() const;
   void clear();  // nothing held (the sums stay allocated)
+  // Before a read's catch-up, for each held contact: its points' histories (`points`: all of the
+  // network's, point_begin: where each contact's start) put back to its entry's, or saved. Between
+  // steps only.
+  void keep_entries(const Index* point_begin, LocalPointRecord* points);
+  // Contact c is released: its entry's histories put back into `points` (its own, `count` of them)
+  // if a read saved them and `points` is given.
+  void take_entry(Index c, LocalPointRecord* points, Index count);
+};
+
+// A held contact and its sums, and a point's history at its contact's entry (the checkpoint's
+// "contacts.held" and "contacts.held.entry").
+struct HeldRow {
+  std::int64_t contact = 0;
+  HeldSums sums{};
+};
+struct HeldEntryRow {
+  std::int64_t point = 0;
+  PlanePointState history{};
 };
 
 // Whether contact c, just evaluated through its points in the frame `f` at the poses `pose` (A = a,

@@ -352,6 +352,8 @@ class Loader {
   Loader(const Parsed& f, bool apply) : f_(f), apply_(apply) {}
   bool applying() const { return apply_; }
   std::uint32_t version() const { return f_.header.version; }  // of the file being read
+  // For a part that finds what it read inconsistent (a state struct cannot name Reject).
+  [[noreturn]] void reject(const std::string& reason) const { throw Reject{reason}; }
 
   template <class... Columns>
   void table(const std::string& name, std::size_t n, Columns... columns) {

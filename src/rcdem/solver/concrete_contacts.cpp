@@ -1,5 +1,9 @@
 #include "rcdem/solver/concrete_contacts.hpp"
 
+#include <fmt/format.h>
+
+#include <cstring>
+
 #include "rcdem/contact/contact_loop.hpp"
 #include "rcdem/contact/law_loops.hpp"
 #include "rcdem/core/parallel.hpp"
@@ -57,6 +61,7 @@ void ConcreteContacts::catch_up(Real dt) const {
 
 void ConcreteContacts::distribute(const Decomposition& d, Communicator& comm) {
   comm_ = &comm;
+  own_contacts_ = d.contact_offsets;
   const auto r = static_cast<std::size_t>(d.rank);
   contacts_.listed = true;
   contacts_.evaluated_blocks = d.evaluated_blocks;
@@ -175,6 +180,100 @@ Real ConcreteContacts::held_energy(Index c) const {
   return held_strain_energy(condensation_.sums, c, condensation_.held.sums(c), contacts_.normal[c],
                             contacts_.tangent[c], kinematics_->pose.ptr(), net_->particle_a[c],
                             net_->particle_b[c]);
+}
+
+void ConcreteContacts::held_rows(std::vector<HeldRow>& rows,
+                                 std::vector<HeldEntryRow>& entry) const {
+  if (comm_) {
+    rows = gathered_held_;
+    entry = gathered_entry_;
+    return;
+  }
+  local_held_rows(0, net_->contact_count(), rows, entry);
+}
+
+void ConcreteContacts::local_held_rows(Index lo, Index hi, std::vector<HeldRow>& rows,
+                                       std::vector<HeldEntryRow>& entry) const {
+  const HeldContacts& h = condensation_.held;
+  const ContactNetwork& net = *net_;
+  for (Index c = lo; c < hi; ++c) {
+    if (h.held.empty() || !h.held[static_cast<std::size_t>(c)]) continue;
+    rows.push_back({c, h.sums(c)});
+    // Saved by a read, or (no read since it was held) its points' histories themselves.
+    const Index begin = net.point_begin[c];
+    const std::vector<PlanePointState>* e =
+        h.saved[static_cast<std::size_t>(c)] ? &h.entry.at(c) : nullptr;
+    for (Index m = begin; m < net.point_begin[c + 1]; ++m)
+      entry.push_back({m, e ? (*e)[static_cast<std::size_t>(m - begin)]
+                            : contacts_.point.records[static_cast<std::size_t>(m)].history});
+  }
+}
+
+namespace {
+
+// Each rank's `local` rows appended in rank order on rank 0 (trivially copyable rows).
+template <class Row>
+std::vector<Row> gather_rows(Communicator& comm, const std::vector<Row>& local) {
+  std::vector<std::uint8_t> bytes(local.size() * sizeof(Row)), all;
+  if (!local.empty()) std::memcpy(bytes.data(), local.data(), bytes.size());
+  comm.gather_bytes(bytes, all);
+  std::vector<Row> rows(all.size() / sizeof(Row));
+  if (!rows.empty()) std::memcpy(rows.data(), all.data(), rows.size() * sizeof(Row));
+  return rows;
+}
+
+}  // namespace
+
+void ConcreteContacts::gather_held() {
+  // Each rank's own contacts (disjoint ranges, ascending by rank), held where it evaluates them.
+  const auto r = static_cast<std::size_t>(comm_->rank());
+  std::vector<HeldRow> rows;
+  std::vector<HeldEntryRow> entry;
+  local_held_rows(own_contacts_[r], own_contacts_[r + 1], rows, entry);
+  gathered_held_ = gather_rows(*comm_, rows);
+  gathered_entry_ = gather_rows(*comm_, entry);
+}
+
+std::string ConcreteContacts::held_rows_fault(const std::vector<HeldRow>& rows,
+                                              const std::vector<HeldEntryRow>& entry) const {
+  if (!rows.empty() && condensation_.sums.empty())
+    return "contacts held where this run holds none (solver.condense_elastic_contacts off)";
+  const ContactNetwork& net = *net_;
+  std::size_t k = 0;
+  Index last = -1;
+  for (const HeldRow& w : rows) {
+    if (w.contact <= last || w.contact >= net.contact_count())
+      return fmt::format("contact {} out of range or out of order", w.contact);
+    last = w.contact;
+    for (Index m = net.point_begin[last]; m < net.point_begin[last + 1]; ++m, ++k)
+      if (k >= entry.size() || entry[k].point != m)
+        return fmt::format("contact {}'s entry points are not its points", last);
+  }
+  if (k != entry.size()) return "entry points of contacts not held";
+  return {};
+}
+
+void ConcreteContacts::apply_held_rows(const std::vector<HeldRow>& rows,
+                                       const std::vector<HeldEntryRow>& entry) {
+  HeldContacts& h = condensation_.held;
+  const ContactNetwork& net = *net_;
+  std::vector<std::uint8_t> evaluated(h.block.size(), contacts_.listed ? 0 : 1);
+  for (const Index b : contacts_.evaluated_blocks) evaluated[static_cast<std::size_t>(b)] = 1;
+  std::size_t k = 0;  // held_rows_fault: the entry rows are the held contacts' points in order
+  for (const HeldRow& w : rows) {
+    const Index c = w.contact;
+    const Index count = net.points_of(c);
+    k += static_cast<std::size_t>(count);
+    if (!evaluated[static_cast<std::size_t>(c / HeldContacts::kBlock)]) continue;
+    std::vector<PlanePointState>& e = h.entry[c];
+    e.resize(static_cast<std::size_t>(count));
+    for (Index m = 0; m < count; ++m)
+      e[static_cast<std::size_t>(m)] = entry[k - static_cast<std::size_t>(count - m)].history;
+    h.sums(c) = w.sums;
+    h.held[static_cast<std::size_t>(c)] = 1;
+    h.saved[static_cast<std::size_t>(c)] = 1;
+  }
+  h.current = true;
 }
 
 void ConcreteContacts::visit_springs(SpringVisitor& v, const Bodies& bodies) const {

@@ -3,6 +3,7 @@
 // history, the condensation of intact contacts, and the body -> contacts index its gather walks.
 // Its evaluation reads the step's kinematics; a condensed contact's catch-up reads the last
 // evaluation's (contact_loop.hpp, evaluate_contacts).
+#include <string>
 #include <vector>
 
 #include "rcdem/config/scenario.hpp"
@@ -45,15 +46,35 @@ class ConcreteContacts final : public StepPart {
   ContactState& state() const { return contacts_; }
   const ElasticCondensation& condensation() const { return condensation_; }
 
+  // A distributed run's held contacts, from every rank onto rank 0 for its checkpoint (after each
+  // rank's catch-up: collective).
+  void gather_held();
+
   // The checkpoint's "contacts" (core/archive.hpp). Restored: which contacts are intact follows
-  // from the points' damage, and none is condensed (their histories were complete when saved).
+  // from the points' damage, and none is condensed (their histories were complete when saved);
+  // the held ones (format 6 on) stay held, their points current (held_contacts.hpp).
   template <class Archive, class Self>
   static void serialize(Archive& ar, Self& s) {
     ContactState::serialize(ar, "contacts", s.contacts_);
+    std::vector<HeldRow> held;
+    std::vector<HeldEntryRow> entry;
+    if constexpr (!Archive::loading) s.held_rows(held, entry);
+    if (ar_version_at_least(ar, 6)) {  // before: nothing held (reads released them)
+      ar.list("contacts.held", held, member("contact", "-", &HeldRow::contact),
+              member("sums", "", &HeldRow::sums));
+      ar.list("contacts.held.entry", entry, member("point", "-", &HeldEntryRow::point),
+              member("history", "", &HeldEntryRow::history));
+    }
     if constexpr (Archive::loading) {
       if (ar.applying()) s.energy_kept_ = false;
-      if (ar.applying() && !s.condensation_.sums.empty())
-        s.condensation_.reset_flags(*s.net_, s.contacts_.point.damage());
+      if (ar.applying()) {
+        if (const std::string why = s.held_rows_fault(held, entry); !why.empty())
+          ar.reject("section 'contacts.held': " + why);
+        if (!s.condensation_.sums.empty()) {
+          s.condensation_.reset_flags(*s.net_, s.contacts_.point.damage());
+          s.apply_held_rows(held, entry);
+        }
+      }
     }
   }
 
@@ -61,6 +82,26 @@ class ConcreteContacts final : public StepPart {
   ContactInputs inputs(const std::vector<Vec3>& positions,
                        const std::vector<Eigen::Matrix3d>& rotation, Real dt) const;
   Real held_energy(Index c) const;  // held contact c's at the last evaluation
+  // The held contacts' rows, ascending (after a read's catch-up: every one's entry saved): this
+  // rank's own; rank 0 of a distributed run, every rank's (gather_held).
+  void held_rows(std::vector<HeldRow>& rows, std::vector<HeldEntryRow>& entry) const;
+  // ... of contacts [lo, hi) held on this rank, appended.
+  void local_held_rows(Index lo, Index hi, std::vector<HeldRow>& rows,
+                       std::vector<HeldEntryRow>& entry) const;
+  // What is wrong with restored rows (empty: nothing): contacts out of range or not ascending,
+  // entry points not exactly the held contacts' points in order, or any held with condensation
+  // off.
+  std::string held_rows_fault(const std::vector<HeldRow>& rows,
+                              const std::vector<HeldEntryRow>& entry) const;
+  // The rows of the contacts this rank evaluates held again, their points current.
+  void apply_held_rows(const std::vector<HeldRow>& rows, const std::vector<HeldEntryRow>& entry);
+  template <class Archive>
+  static bool ar_version_at_least(Archive& ar, std::uint32_t v) {
+    if constexpr (Archive::loading)
+      return ar.version() >= v;
+    else
+      return true;
+  }
 
   // A distributed run's: the ranks, the strain energy's blocks per rank, the spheres this rank
   // assigns (then every body from `scatter_spheres_end_`), all of them when not distributed.
@@ -79,6 +120,10 @@ class ConcreteContacts final : public StepPart {
   // Per contact, kept by the last evaluation when it was asked to (StepContext): energy_kept_.
   std::vector<Real> contact_energy_;
   bool energy_kept_ = false;
+  std::vector<Index> own_contacts_;  // distributed: each rank's own contacts (ranks + 1 offsets)
+  // Rank 0 of a distributed run: every rank's held rows at the last gather (gather_held).
+  std::vector<HeldRow> gathered_held_;
+  std::vector<HeldEntryRow> gathered_entry_;
 };
 
 }  // namespace rcdem

@@ -97,6 +97,7 @@ void Simulation::catch_up_bodies() const {
 
 void Simulation::gather_state() {
   concrete_.catch_up(time_step_.dt);
+  concrete_.gather_held();
   exchange_->gather_state(concrete_.state(), specimen_.contacts, bodies_, integrator_.step_sums());
   gathered_step_ = motion_step_ = steps_;
 }
