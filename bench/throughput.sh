@@ -28,8 +28,9 @@
 #     YADE's cube intact and pulled past its peak to 0.8 of it (bench/yade_cpm.py ... cracked);
 #     each state in one YADE process of ROUNDS rounds, every YADE timing followed by rcdem's
 #     (best of REPEATS) at THREADS threads. One ratio per round; the medians; last lines
-#     ratio_particle_steps_vs_yade_intact=<median> and ..._cracked=<median>. HOLD=1: rcdem's
-#     cracked cube with solver.hold_unloading_contacts = true.
+#     ratio_particle_steps_vs_yade_intact=<median> and ..._cracked=<median>. HOLD=0: rcdem's
+#     cracked cube with solver.hold_unloading_contacts = false (on by default since 2026-11-28).
+#     The checkpoint is made with the scenario as it is (the held contacts in it, format 6).
 #   bash bench/throughput.sh --scaling [STEPS=200] [BUILD_DIR=build]
 #     rcdem_step_bench on cubes of SCALING_SIZES (default 0.07 0.11 0.16 m: about 0.9k, 3.4k and
 #     10.3k particles, 12x) at THREADS threads; one line per size with the time per step per
@@ -117,11 +118,11 @@ if [[ $CRACKED == 1 ]]; then
     fi
   fi
   cracked_cube=$cube
-  if [[ "${HOLD:-0}" == 1 ]]; then
-    cracked_cube="$tmp/tension_hold.toml"
-    awk '{ print } /^\[solver\]/ { print "hold_unloading_contacts = true" }' "$cube" > "$cracked_cube"
+  if [[ "${HOLD:-1}" == 0 ]]; then
+    cracked_cube="$tmp/tension_visit.toml"
+    awk '{ print } /^\[solver\]/ { print "hold_unloading_contacts = false" }' "$cube" > "$cracked_cube"
   fi
-  echo "cracked: rcdem $cube intact and from $ckpt (HOLD=${HOLD:-0}); YADE ${YADE_N:-10335} spheres; $THREADS thread(s), $ROUNDS rounds"
+  echo "cracked: rcdem $cube intact and from $ckpt (HOLD=${HOLD:-1}); YADE ${YADE_N:-10335} spheres; $THREADS thread(s), $ROUNDS rounds"
   for state in intact cracked; do
     if [[ $state == intact ]]; then
       between="OMP_NUM_THREADS=$THREADS $STEP_BENCH $cube $K 50 $REPEATS | grep -v '^#'"
