@@ -9,7 +9,8 @@
     intact contacts, and the cyclic pull-out (a loading program); on 2 ranks the plain
     four-point beam (two load plates, a gauge as the test's displacement: read every step);
   * a 2-rank run stopped by SIGINT after a checkpoint, resumed on 3 ranks, and another resumed on
-    one process, end with the same outputs as the uninterrupted run;
+    one process, end with the same outputs as the uninterrupted run (the checkpoint holds damaged
+    contacts held to their sums, gathered from both ranks: format 6);
   * a bad scenario under `mpirun -q` (without -q mpirun adds its own note on the exit code): one
     error line (from rank 0), a non-zero exit, within seconds; another command than `run`:
     refused in one line;
@@ -30,6 +31,8 @@ import subprocess
 import sys
 import tempfile
 import time
+
+import h5py
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from checklist import Checklist  # noqa: E402
@@ -153,6 +156,10 @@ def resume_other_rank_count(tmp):
         check(code != 0 and checkpoints(out),
               f"a 2-rank run stops on SIGINT with a checkpoint (exit {code}, checkpoints "
               f"{checkpoints(out)})", err[-400:])
+        last = os.path.join(out, f"checkpoint_{checkpoints(out)[-1]:012d}.h5") if checkpoints(
+            out) else None
+        held = h5py.File(last, "r")["contacts.held/contact"].shape[0] if last else 0
+        check(held > 0, f"the 2-rank checkpoint holds contacts held to their sums ({held})")
         r = run(ranks, ["run", "--resume", out])
         check(r.returncode == 0, f"the 2-rank checkpoint resumes on {ranks} rank(s)",
               r.stderr[-400:])
