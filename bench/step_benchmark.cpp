@@ -118,14 +118,15 @@ using rcdem::Vec3;
 //   A's and B's position + orientation r 112; gather: NodeRef r, NodeForces r, A's and B's
 //   force + torque r+w 192; energy: InteractionNode r, NodeState r, NodeForces.dissipated r 8.
 struct ByteCount {
-  double per_local_point = 0, per_contact = 0, per_condensed_contact = 0, per_body = 0,
-         per_plate_contact = 0, per_interface_contact = 0, per_node = 0;
-  double local_points = 0, contacts = 0, condensed_contacts = 0, visited_points = 0, bodies = 0,
-         plate_contacts = 0, interface_contacts = 0, interface_points = 0, nodes = 0;
+  double per_local_point = 0, per_contact = 0, per_condensed_contact = 0, per_held_contact = 0,
+         per_body = 0, per_plate_contact = 0, per_interface_contact = 0, per_node = 0;
+  double local_points = 0, contacts = 0, condensed_contacts = 0, held_contacts = 0,
+         visited_points = 0, bodies = 0, plate_contacts = 0, interface_contacts = 0,
+         interface_points = 0, nodes = 0;
   double points_total() const { return per_local_point * visited_points; }
   double contacts_total() const {
-    return per_contact * (contacts - condensed_contacts) +
-           per_condensed_contact * condensed_contacts;
+    return per_contact * (contacts - condensed_contacts - held_contacts) +
+           per_condensed_contact * condensed_contacts + per_held_contact * held_contacts;
   }
   double bodies_total() const { return per_body * bodies; }
   double plates_total() const { return per_plate_contact * plate_contacts; }
@@ -154,6 +155,10 @@ ByteCount count_bytes(const rcdem::Simulation& sim) {
   // (exactly zero: not written, and its block's ledger sum reads only the visited contacts') alone.
   b.per_condensed_contact = b.per_contact - 2 * 2 * V - 2 * R - 2 * R +
                             rcdem::CondensedSums::kBytesPerContact + 2 * sizeof(std::uint8_t);
+  // A held contact (contact/held_contacts.hpp) reads the same sums, its own (HeldSums) and its
+  // frame (read + written), and writes its force and torques; its dissipations are zero.
+  b.per_held_contact =
+      b.per_condensed_contact + sizeof(rcdem::HeldSums) + 2 * 2 * V + sizeof(std::uint8_t);
   constexpr double J = sizeof(std::int64_t), P = rcdem::BodyPoses::kStride * R;
   const bool point_path = sim.condensed_contacts() < sim.specimen().contacts.contact_count();
   b.per_body = (V + Q + 9 * R + V + P)                                // kinematics
@@ -181,7 +186,9 @@ ByteCount count_bytes(const rcdem::Simulation& sim) {
   b.contacts = static_cast<double>(sp.contacts.contact_count());
   // As the last step left them (the count changes slowly over a run).
   b.condensed_contacts = static_cast<double>(sim.condensed_contacts());
-  b.visited_points = b.local_points - static_cast<double>(sim.condensed_points());
+  b.held_contacts = static_cast<double>(sim.held_contacts());
+  b.visited_points = b.local_points - static_cast<double>(sim.condensed_points()) -
+                     static_cast<double>(sim.held_points());
   b.bodies = static_cast<double>(sim.bodies().size());
   b.plate_contacts = static_cast<double>(sim.plate_contacts().size());
   for (const auto& ic : sp.interfaces) {
@@ -317,12 +324,13 @@ void time_and_report(rcdem::Simulation& sim, const BenchArgs& a, double setup_s,
       repeat_seconds.c_str(), strain_energy_s, strain_energy);
   std::printf(
       "# bytes: per_local_point=%.0f x %.0f visited = %.4g; per_contact=%.0f x %.0f + "
-      "condensed %.0f x %.0f = %.4g; "
+      "condensed %.0f x %.0f + held %.0f x %.0f = %.4g; "
       "per_body=%.0f x %.0f = %.4g; plates=%.0f x %.0f = %.4g; interfaces=%.0f x %.0f "
       "+ %.0f x %.0f points = %.4g; nodes=%.0f x %.0f = %.4g; total=%.4g\n",
       bc.per_local_point, bc.visited_points, bc.points_total(), bc.per_contact,
-      bc.contacts - bc.condensed_contacts, bc.per_condensed_contact, bc.condensed_contacts,
-      bc.contacts_total(), bc.per_body, bc.bodies, bc.bodies_total(), bc.per_plate_contact,
+      bc.contacts - bc.condensed_contacts - bc.held_contacts, bc.per_condensed_contact,
+      bc.condensed_contacts, bc.per_held_contact, bc.held_contacts, bc.contacts_total(),
+      bc.per_body, bc.bodies, bc.bodies_total(), bc.per_plate_contact,
       bc.plate_contacts, bc.plates_total(), bc.per_interface_contact, bc.interface_contacts,
       bc.per_local_point, bc.interface_points, bc.interfaces_total(), bc.per_node, bc.nodes,
       bc.nodes_total(), bc.total());

@@ -309,4 +309,11 @@ Index ElasticCondensation::condensed_point_count(const ContactNetwork& net) cons
   return n;
 }
 
+Index ElasticCondensation::held_point_count(const ContactNetwork& net) const {
+  Index n = 0;
+  for (Index c = 0; c < static_cast<Index>(held.held.size()); ++c)
+    if (held.held[static_cast<std::size_t>(c)]) n += net.points_of(c);
+  return n;
+}
+
 }  // namespace rcdem

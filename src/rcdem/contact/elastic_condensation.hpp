@@ -72,6 +72,7 @@ struct ElasticCondensation {
   void reset_flags(const ContactNetwork& net, const PointDamage& damage);
   Index condensed_count() const;
   Index condensed_point_count(const ContactNetwork& net) const;  // their local points
+  Index held_point_count(const ContactNetwork& net) const;       // the held contacts' points
 };
 
 // The condensed evaluation of a block of consecutive contacts (formulas above), written as plain

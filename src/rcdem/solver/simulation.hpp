@@ -101,6 +101,9 @@ class Simulation {
   Index condensed_points() const {
     return concrete_.condensation().condensed_point_count(specimen_.contacts);
   }
+  Index held_points() const {  // the held contacts' local points
+    return concrete_.condensation().held_point_count(specimen_.contacts);
+  }
   // The bodies as the step left them on this rank, without gathering: distributed, current are
   // only its own spheres, its ghosts, the cylinders and, on rank 0, the `leader_reads` of
   // distribute(). For readers of those alone (a gauge every step).
