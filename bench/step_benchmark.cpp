@@ -330,10 +330,10 @@ void time_and_report(rcdem::Simulation& sim, const BenchArgs& a, double setup_s,
       bc.per_local_point, bc.visited_points, bc.points_total(), bc.per_contact,
       bc.contacts - bc.condensed_contacts - bc.held_contacts, bc.per_condensed_contact,
       bc.condensed_contacts, bc.per_held_contact, bc.held_contacts, bc.contacts_total(),
-      bc.per_body, bc.bodies, bc.bodies_total(), bc.per_plate_contact,
-      bc.plate_contacts, bc.plates_total(), bc.per_interface_contact, bc.interface_contacts,
-      bc.per_local_point, bc.interface_points, bc.interfaces_total(), bc.per_node, bc.nodes,
-      bc.nodes_total(), bc.total());
+      bc.per_body, bc.bodies, bc.bodies_total(), bc.per_plate_contact, bc.plate_contacts,
+      bc.plates_total(), bc.per_interface_contact, bc.interface_contacts, bc.per_local_point,
+      bc.interface_points, bc.interfaces_total(), bc.per_node, bc.nodes, bc.nodes_total(),
+      bc.total());
   std::fflush(stdout);
 }
 
