@@ -156,9 +156,11 @@ def resume_other_rank_count(tmp):
         check(code != 0 and checkpoints(out),
               f"a 2-rank run stops on SIGINT with a checkpoint (exit {code}, checkpoints "
               f"{checkpoints(out)})", err[-400:])
-        last = os.path.join(out, f"checkpoint_{checkpoints(out)[-1]:012d}.h5") if checkpoints(
-            out) else None
-        held = h5py.File(last, "r")["contacts.held/contact"].shape[0] if last else 0
+        held = 0
+        if checkpoints(out):
+            last = os.path.join(out, f"checkpoint_{checkpoints(out)[-1]:012d}.h5")
+            with h5py.File(last, "r") as f:
+                held = f["contacts.held/contact"].shape[0]
         check(held > 0, f"the 2-rank checkpoint holds contacts held to their sums ({held})")
         r = run(ranks, ["run", "--resume", out])
         check(r.returncode == 0, f"the 2-rank checkpoint resumes on {ranks} rank(s)",

@@ -302,18 +302,24 @@ Index ElasticCondensation::condensed_count() const {
   return static_cast<Index>(std::count(condensed.begin(), condensed.end(), std::uint8_t{1}));
 }
 
-Index ElasticCondensation::condensed_point_count(const ContactNetwork& net) const {
+namespace {
+
+// The local points of the contacts whose flag is set.
+Index flagged_points(const std::vector<std::uint8_t>& flag, const ContactNetwork& net) {
   Index n = 0;
-  for (Index c = 0; c < static_cast<Index>(condensed.size()); ++c)
-    if (condensed[static_cast<std::size_t>(c)]) n += net.points_of(c);
+  for (Index c = 0; c < static_cast<Index>(flag.size()); ++c)
+    if (flag[static_cast<std::size_t>(c)]) n += net.points_of(c);
   return n;
 }
 
+}  // namespace
+
+Index ElasticCondensation::condensed_point_count(const ContactNetwork& net) const {
+  return flagged_points(condensed, net);
+}
+
 Index ElasticCondensation::held_point_count(const ContactNetwork& net) const {
-  Index n = 0;
-  for (Index c = 0; c < static_cast<Index>(held.held.size()); ++c)
-    if (held.held[static_cast<std::size_t>(c)]) n += net.points_of(c);
-  return n;
+  return flagged_points(held.held, net);
 }
 
 }  // namespace rcdem

@@ -195,9 +195,10 @@ void ConcreteContacts::held_rows(std::vector<HeldRow>& rows,
 void ConcreteContacts::local_held_rows(Index lo, Index hi, std::vector<HeldRow>& rows,
                                        std::vector<HeldEntryRow>& entry) const {
   const HeldContacts& h = condensation_.held;
+  if (h.held.empty()) return;  // no condensation
   const ContactNetwork& net = *net_;
   for (Index c = lo; c < hi; ++c) {
-    if (h.held.empty() || !h.held[static_cast<std::size_t>(c)]) continue;
+    if (!h.held[static_cast<std::size_t>(c)]) continue;
     rows.push_back({c, h.sums(c)});
     // Saved by a read, or (no read since it was held) its points' histories themselves.
     const Index begin = net.point_begin[c];

@@ -58,8 +58,12 @@ class ConcreteContacts final : public StepPart {
     ContactState::serialize(ar, "contacts", s.contacts_);
     std::vector<HeldRow> held;
     std::vector<HeldEntryRow> entry;
-    if constexpr (!Archive::loading) s.held_rows(held, entry);
-    if (ar_version_at_least(ar, 6)) {  // before: nothing held (reads released them)
+    bool with_held = true;  // format 6 on; before, nothing was held (reads released them)
+    if constexpr (Archive::loading)
+      with_held = ar.version() >= 6;
+    else
+      s.held_rows(held, entry);
+    if (with_held) {
       ar.list("contacts.held", held, member("contact", "-", &HeldRow::contact),
               member("sums", "", &HeldRow::sums));
       ar.list("contacts.held.entry", entry, member("point", "-", &HeldEntryRow::point),
@@ -95,13 +99,6 @@ class ConcreteContacts final : public StepPart {
                               const std::vector<HeldEntryRow>& entry) const;
   // The rows of the contacts this rank evaluates held again, their points current.
   void apply_held_rows(const std::vector<HeldRow>& rows, const std::vector<HeldEntryRow>& entry);
-  template <class Archive>
-  static bool ar_version_at_least(Archive& ar, std::uint32_t v) {
-    if constexpr (Archive::loading)
-      return ar.version() >= v;
-    else
-      return true;
-  }
 
   // A distributed run's: the ranks, the strain energy's blocks per rank, the spheres this rank
   // assigns (then every body from `scatter_spheres_end_`), all of them when not distributed.
