@@ -268,12 +268,16 @@ template <bool kEnergy>
     const Real rc[3] = {g.rc[0][l], g.rc[1][l], g.rc[2][l]};
     Real du[3], dd[9];
     change_since_entry(hl, rc, disp0, disp, du, dd);
-    Real dd_sq = 0.0;
-    for (int e = 0; e < 9; ++e) dd_sq += dd[e] * dd[e];
-    const Real spread = std::sqrt(dd_sq) * g.radius[l];
+    // The spread of the points about the centroid, row by row: along n |dD row n| |rho|max, across
+    // it the Frobenius norm of the t1, t2 rows (at least their spectral norm) times |rho|max.
+    Real dd_n_sq = 0.0, dd_s_sq = 0.0;
+    for (int e = 0; e < 3; ++e) dd_n_sq += dd[e] * dd[e];
+    for (int e = 3; e < 9; ++e) dd_s_sq += dd[e] * dd[e];
+    const Real spread_n = std::sqrt(dd_n_sq) * g.radius[l];
+    const Real spread_s = std::sqrt(dd_s_sq) * g.radius[l];
     const Real du_s = std::sqrt(du[1] * du[1] + du[2] * du[2]);
     out.kept[l] = (cc > -0.5) & is_small_angle(spin * spin) & (r2 > 0.25) &
-                  (du[0] + spread < hl[13]) & (du_s + spread < hl[14]);
+                  (du[0] + spread_n < hl[13]) & (du_s + spread_s < hl[14]);
     // Force and moment in the frame (held_contacts.hpp), then in the world.
     const Real kn = g.kn[l], al = g.al[l];
     const Real lam[3] = {1.0, al, al};

@@ -22,9 +22,11 @@
 // disp0, disp and the two rooms below are 27 numbers per held contact, against 6 points' 768
 // bytes.
 //
-// Whether the points stay linear is decided by a bound, as for the intact ones: |du_J - du_c| <=
-// |dD|_F max|rho| = e, and the contact stays held while du_cn + e < room_n and |du_cs| + e <
-// room_s, the smallest room of its points at entry:
+// Whether the points stay linear is decided by a bound, row by row of dD: with rho_J = r_J - r_c,
+// |du_Jn - du_cn| <= |dD_n| max|rho| = e_n (dD_n: dD's row along n) and |du_Js - du_cs| <=
+// |dD_s|_F max|rho| = e_s (dD_s: its t1, t2 rows; the Frobenius norm bounds their spectral
+// norm), and the contact stays held while du_cn + e_n < room_n and |du_cs| + e_s < room_s, the
+// smallest room of its points at entry:
 //   normal: to the cap, ((1 - D) fn_max - fn) / kn, and to the largest un the damage does not
 //           read, max(un_max, u_n0) - un (below u_n0 = fn_max / kn no damage is read);
 //   shear:  to the cap without friction, ((1 - D) c_max - |fs|) / ks (friction only widens it),
