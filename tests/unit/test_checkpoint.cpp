@@ -471,7 +471,7 @@ std::map<std::string, SectionEntry> section_table(const std::string& file) {
   return sections;
 }
 
-// The sections' widths are format version 6's (docs/checkpoint.md), now that each struct's
+// The sections' widths are format version 7's (docs/checkpoint.md), now that each struct's
 // serialize() names its columns and the width follows from their types: a column added or dropped
 // without a new format version fails here, empty tables included (small_run pulls no bar).
 // small_run.toml after 20 steps and a history row, with every part a run checkpoints.
@@ -491,18 +491,18 @@ struct SmallRunParts {
 };
 
 TEST(Checkpoint, SectionWidthsAreThoseOfTheFormatVersion) {
-  ASSERT_EQ(io::kCheckpointVersion, 6U);
+  ASSERT_EQ(io::kCheckpointVersion, 7U);
   SmallRunParts run;
   Simulation& sim = run.sim;
   io::History& history = run.history;
   const std::string file = io::encode_checkpoint(run.parts(), 3);
   auto sections = section_table(file);
-  const std::map<std::string, std::uint32_t> v6 = {
+  const std::map<std::string, std::uint32_t> v7 = {
       {"bodies", 22},
       {"bodies.step", 3},
       {"contacts", 17},
       {"contacts.points", 9},
-      {"contacts.held", 28},
+      {"contacts.held", 33},
       {"contacts.held.entry", 10},
       {"interface.0", 17},
       {"interface.0.points", 9},
@@ -518,7 +518,7 @@ TEST(Checkpoint, SectionWidthsAreThoseOfTheFormatVersion) {
       {"snapshots.bars", 1},
       {"cracks", 7},
       {"run", 7}};
-  for (const auto& [name, width] : v6) {
+  for (const auto& [name, width] : v7) {
     ASSERT_TRUE(sections.count(name)) << name;
     EXPECT_EQ(sections[name].width, width) << name;
   }
@@ -542,8 +542,8 @@ std::string as_format4(const std::string& v5) {
   return v4;
 }
 
-// A file of format 4 restores to the state a format-6 file of the same run holds (no contact is
-// held in this run: format 6 added the held ones).
+// A file of format 4 restores to the state a format-7 file of the same run holds (no contact is
+// held in this run: formats 6 and 7 hold them).
 TEST(Checkpoint, ReadsTheFormatBefore) {
   ASSERT_EQ(io::kOldestReadableCheckpointVersion, 4U);
   const Scenario sc = small_run();

@@ -182,7 +182,9 @@ TEST(HeldContacts, ReadsAndCheckpointsDoNotChangeTheRun) {
 // The bound is sound: no point of a contact kept held leaves the linear range. A read brings the
 // held contacts' points up to the last step through the law itself (one update from their entry
 // histories), so a point that crossed a limit while held would come back from the read with more
-// damage than it entered with (D never decreases, S4); none does, and none stands above its cap.
+// damage than it entered with (D never decreases, S4); none does, none stands above its cap, and
+// every broken point of a held contact comes back open, carrying nothing (held contacts with
+// broken points are met).
 TEST(HeldContacts, NoHeldPointLeavesItsRoom) {
   const Scenario sc = pulled_box(true);
   Simulation sim(sc, build_specimen(sc));
@@ -191,7 +193,7 @@ TEST(HeldContacts, NoHeldPointLeavesItsRoom) {
     if (const auto* c = dynamic_cast<const ConcreteContacts*>(part)) concrete = c;
   ASSERT_NE(concrete, nullptr);
   const ContactNetwork& net = sim.specimen().contacts;
-  Index checked = 0;
+  Index checked = 0, with_broken = 0;
   for (int k = 1; k <= kSteps; ++k) {
     sim.step();
     if (k % 5 != 0) continue;
@@ -208,11 +210,51 @@ TEST(HeldContacts, NoHeldPointLeavesItsRoom) {
         const PlanePointState& h = read[i].history;
         ASSERT_EQ(h.damage, before[i]) << "step " << k << ", contact " << c << ", point " << m;
         ASSERT_LE(h.fn, (1 - h.damage) * read[i].constants.fn_max) << "step " << k;
+        if (h.damage < 1) continue;
+        ASSERT_EQ(h.fn, 0.0) << "step " << k << ", contact " << c << ", point " << m;
+        ASSERT_EQ(h.fs.squaredNorm(), 0.0) << "step " << k << ", contact " << c;
       }
       ++checked;
+      with_broken += concrete->condensation().held.sums(c).open_margin >= 0;
     }
   }
   EXPECT_GT(checked, 10000) << "the test must meet held contacts";
+  EXPECT_GT(with_broken, 1000) << "... and held contacts with broken points";
+  std::printf("held contacts checked %lld, with broken points %lld\n",
+              static_cast<long long>(checked), static_cast<long long>(with_broken));
+}
+
+// A broken point of a held contact carries nothing only while its opening grows (its force is
+// kn min(0, un - M), M its largest opening), so a contact with broken points stays held only while
+// each step opens them further (the kernel's per-step test): read at every step (reads change
+// nothing, above), every broken point of a contact held after a step is at least as open as it
+// was after the step before.
+TEST(HeldContacts, BrokenPointsOfAHeldContactKeepOpening) {
+  const Scenario sc = pulled_box(true);
+  Simulation sim(sc, build_specimen(sc));
+  const ConcreteContacts* concrete = nullptr;
+  for (const StepPart* part : sim.parts())
+    if (const auto* c = dynamic_cast<const ConcreteContacts*>(part)) concrete = c;
+  ASSERT_NE(concrete, nullptr);
+  const ContactNetwork& net = sim.specimen().contacts;
+  std::vector<Real> last_un(static_cast<std::size_t>(net.point_count()), 0.0);
+  Index checked = 0;
+  for (int k = 1; k <= kSteps; ++k) {
+    sim.step();
+    const std::vector<std::uint8_t>& held = concrete->condensation().held.held;
+    const auto& points = sim.contacts().point.records;  // caught up
+    for (Index c = 0; c < net.contact_count(); ++c) {
+      if (k == 1 || !held[static_cast<std::size_t>(c)]) continue;
+      for (Index m = net.point_begin[c]; m < net.point_begin[c + 1]; ++m) {
+        const auto i = static_cast<std::size_t>(m);
+        if (points[i].history.damage < 1) continue;
+        ASSERT_GE(points[i].history.un, last_un[i]) << "step " << k << ", contact " << c;
+        ++checked;
+      }
+    }
+    for (std::size_t i = 0; i < last_un.size(); ++i) last_un[i] = points[i].history.un;
+  }
+  EXPECT_GT(checked, 10000) << "the test must meet broken points of held contacts";
 }
 
 // With holding, the energy a history row reads is kept by the step (evaluate_held), and it is the

@@ -357,6 +357,11 @@ template <typename Law>
       cs.dissipated_damage[c] = 0.0;
       cs.dissipated_friction[c] = 0.0;
       if (energy) energy[c] = out.energy[k];
+      HeldSums& h = cond.held.sums(c);
+      if (h.open_margin >= 0) {  // with broken points: this step is the next one's last
+        h.last_du_n = out.du_n[k];
+        for (int e = 0; e < 3; ++e) h.last_dd_n[e] = out.dd_n[e][k];
+      }
       continue;
     }
     prefetch_points(in.net, cs.point, c);

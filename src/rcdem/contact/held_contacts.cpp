@@ -142,9 +142,10 @@ void kinematics_at_poses(const CondensedSums& s, std::size_t i, const Vec3& n, c
   held_kinematics(nn, tt, ra, rb, dx, r0, disp0, disp, arm);
 }
 
-// The sums' numbers in HeldSums order (phi0, q, energy0, room_n, room_s, disp0, disp).
-constexpr int kHeldSize = 27;
-static_assert(sizeof(HeldSums) == kHeldSize * sizeof(Real), "HeldSums is 27 doubles");
+// The sums' numbers in HeldSums order (phi0, q, energy0, room_n, room_s, disp0, disp,
+// open_margin, last_du_n, last_dd_n).
+constexpr int kHeldSize = 32;
+static_assert(sizeof(HeldSums) == kHeldSize * sizeof(Real), "HeldSums is 32 doubles");
 
 // du_c = d0 + dD r_c and dD (row-major) since the entry, from the sums `h` (HeldSums order).
 template <typename H>
@@ -156,6 +157,27 @@ template <typename H>
     du[r] = (disp0[r] - h[15 + r]) +
             (dd[3 * r] * rc[0] + dd[3 * r + 1] * rc[1] + dd[3 * r + 2] * rc[2]);
   }
+}
+
+// Whether every point of a held contact stays in its room, from the change since entry du (at the
+// centroid), dD (row-major) and the radius, with the sums h (HeldSums order).
+template <typename H>
+[[gnu::always_inline]] inline bool inside_rooms(const H& h, const Real (&du)[3],
+                                                const Real (&dd)[9], Real radius) {
+  // The spread of the points about the centroid, row by row: along n |dD row n| |rho|max, across
+  // it the Frobenius norm of the t1, t2 rows (at least their spectral norm) times |rho|max.
+  Real dd_n_sq = 0.0, dd_s_sq = 0.0;
+  for (int e = 0; e < 3; ++e) dd_n_sq += dd[e] * dd[e];
+  for (int e = 3; e < 9; ++e) dd_s_sq += dd[e] * dd[e];
+  const Real spread_n = std::sqrt(dd_n_sq) * radius;
+  const Real spread_s = std::sqrt(dd_s_sq) * radius;
+  const Real du_s = std::sqrt(du[1] * du[1] + du[2] * du[2]);
+  // Broken points keep opening, step by step: the change of du_n at any point since the last
+  // step, at least that of du_cn less |change of dD's row n| |rho|max, is not below the margin.
+  Real step_dd_sq = 0.0;
+  for (int e = 0; e < 3; ++e) step_dd_sq += (dd[e] - h[29 + e]) * (dd[e] - h[29 + e]);
+  const bool opening = (h[27] < 0) | ((du[0] - h[28]) - std::sqrt(step_dd_sq) * radius >= h[27]);
+  return (du[0] + spread_n < h[13]) & (du_s + spread_s < h[14]) & opening;
 }
 
 // The energy (held_contacts.hpp) from the change, K, alpha and J (row-major).
@@ -268,16 +290,10 @@ template <bool kEnergy>
     const Real rc[3] = {g.rc[0][l], g.rc[1][l], g.rc[2][l]};
     Real du[3], dd[9];
     change_since_entry(hl, rc, disp0, disp, du, dd);
-    // The spread of the points about the centroid, row by row: along n |dD row n| |rho|max, across
-    // it the Frobenius norm of the t1, t2 rows (at least their spectral norm) times |rho|max.
-    Real dd_n_sq = 0.0, dd_s_sq = 0.0;
-    for (int e = 0; e < 3; ++e) dd_n_sq += dd[e] * dd[e];
-    for (int e = 3; e < 9; ++e) dd_s_sq += dd[e] * dd[e];
-    const Real spread_n = std::sqrt(dd_n_sq) * g.radius[l];
-    const Real spread_s = std::sqrt(dd_s_sq) * g.radius[l];
-    const Real du_s = std::sqrt(du[1] * du[1] + du[2] * du[2]);
-    out.kept[l] = (cc > -0.5) & is_small_angle(spin * spin) & (r2 > 0.25) &
-                  (du[0] + spread_n < hl[13]) & (du_s + spread_s < hl[14]);
+    const bool inside = inside_rooms(hl, du, dd, g.radius[l]);
+    out.kept[l] = (cc > -0.5) & is_small_angle(spin * spin) & (r2 > 0.25) & inside;
+    out.du_n[l] = du[0];
+    for (int e = 0; e < 3; ++e) out.dd_n[e][l] = dd[e];
     // Force and moment in the frame (held_contacts.hpp), then in the world.
     const Real kn = g.kn[l], al = g.al[l];
     const Real lam[3] = {1.0, al, al};
@@ -346,17 +362,76 @@ RCDEM_SIMD_TARGET_AVX512 void held_block_avx512(const HeldInputs& in, const Inde
 
 }  // namespace
 
-bool hold_contact(const CondensedSums& sums, Index c, const ContactFrame& f, const Real* pose,
-                  Index a, Index b, const LocalPointRecord* points, Index begin, Index end,
-                  HeldSums& h) {
+void broken_point_sums(CondensedSums& sums, Index c, const Vec3& xa0,
+                       const LocalPointRecord* points, Index begin, Index end,
+                       const std::uint8_t* broken) {
+  // ElasticCondensation::build's arithmetic over the points that carry force.
+  const auto i = static_cast<std::size_t>(c);
+  Real k_n = 0, k_all = 0;
+  Vec3 moment = Vec3::Zero(), moment_all = Vec3::Zero();
+  for (Index m = begin; m < end; ++m) {
+    const LocalPointRecord& p = points[m];
+    const Vec3 r = p.constants.kn * (Vec3(p.x0, p.y0, p.z0) - xa0);
+    k_all += p.constants.kn;
+    moment_all += r;
+    if (broken[m - begin]) continue;
+    k_n += p.constants.kn;
+    moment += r;
+  }
+  // With every point broken nothing carries force (K = J = 0); the centroid is then all the
+  // points' (from the points alone: a value left by an earlier hold would differ after a restart).
+  const Vec3 centroid = k_n > 0 ? Vec3(moment / k_n) : Vec3(moment_all / k_all);
+  Eigen::Matrix3d j = Eigen::Matrix3d::Zero();
+  Real radius = 0;
+  for (Index m = begin; m < end; ++m) {
+    const LocalPointRecord& p = points[m];
+    const Vec3 rho = Vec3(p.x0, p.y0, p.z0) - xa0 - centroid;
+    if (!broken[m - begin]) j += p.constants.kn * rho * rho.transpose();
+    radius = std::max(radius, rho.norm());
+  }
+  sums.k_n[i] = k_n;
+  sums.radius[i] = radius;
+  for (int d = 0; d < 3; ++d) sums.centroid[d][i] = centroid[d];
+  sums.j[0][i] = j(0, 0);
+  sums.j[1][i] = j(1, 1);
+  sums.j[2][i] = j(2, 2);
+  sums.j[3][i] = j(0, 1);
+  sums.j[4][i] = j(0, 2);
+  sums.j[5][i] = j(1, 2);
+}
+
+namespace {
+
+// A broken point at its largest opening: under BL its force is kn min(0, un - M), M its largest
+// opening since it broke, and its shear cap (1 - D) c_max + mu max(0, -fn) is then 0, so while its
+// opening keeps growing it carries nothing, whatever the path.
+bool broken_and_open(const PlanePointState& s) {
+  return s.damage >= 1 && s.fn == 0 && s.fs.x == 0 && s.fs.y == 0;
+}
+
+}  // namespace
+
+bool hold_contact(CondensedSums& sums, Index c, const ContactFrame& f, const Real* pose, Index a,
+                  Index b, const LocalPointRecord* points, Index begin, Index end, HeldSums& h) {
   // The rooms first: most contacts that fail do so at one point (a broken or capped one), and
-  // every visited damaged contact is tried every step. A broken point (D = 1) never has room
-  // across (its shear cap (1 - D) c_max - |fs| is not positive): tested first, without the rooms'
-  // divisions and roots, as most visited contacts of a cracked beam have one (bench/RESULTS.md).
-  for (Index m = begin; m < end; ++m)
-    if (points[m].history.damage >= 1) return false;
+  // every visited damaged contact is tried every step. A broken point has no room (its shear cap
+  // (1 - D) c_max - |fs| is not positive): it must be open instead, tested without the rooms'
+  // divisions and roots.
+  constexpr Index kMaxPoints = 64;
+  std::uint8_t broken[kMaxPoints];
+  if (end - begin > kMaxPoints) return false;
+  Real open_margin = -1;  // no broken point: no test of their opening
+  for (Index m = begin; m < end; ++m) {
+    const PlanePointState& st = points[m].history;
+    broken[m - begin] = st.damage >= 1;
+    if (!broken[m - begin]) continue;
+    if (!broken_and_open(st)) return false;
+    // The step's opening must exceed what rounding in the law's un - un_old could turn over.
+    open_margin = std::max(open_margin, kRounding * std::abs(st.un));
+  }
   Real room_n = std::numeric_limits<Real>::infinity(), room_s = room_n;
   for (Index m = begin; m < end; ++m) {
+    if (broken[m - begin]) continue;
     Real rn, rs;
     point_rooms(points[m], rn, rs);
     // NaN rooms (a zero strength) fail here too.
@@ -364,6 +439,7 @@ bool hold_contact(const CondensedSums& sums, Index c, const ContactFrame& f, con
     room_n = std::min(room_n, rn);
     room_s = std::min(room_s, rs);
   }
+  if (open_margin >= 0) broken_point_sums(sums, c, f.xa0, points, begin, end, broken);
   const auto i = static_cast<std::size_t>(c);
   const Real rc[3] = {sums.centroid[0][i], sums.centroid[1][i], sums.centroid[2][i]};
   HeldSums s{};
@@ -381,6 +457,7 @@ bool hold_contact(const CondensedSums& sums, Index c, const ContactFrame& f, con
   }
   s.room_n = room_n;
   s.room_s = room_s;
+  s.open_margin = open_margin;  // the last step's du_cn and dD row n: zero at the entry
   // The entry's kinematics with the kernel's arithmetic (not f's), so that the change is exactly
   // zero at the entry's poses.
   kinematics_at_poses(sums, i, f.n, f.t1, pose, a, b, s.disp0, s.disp);

@@ -19,8 +19,8 @@
 //   energy     sum E_J = E0 - (Phi0 . du_c + sum_ik dD_ik Q_ki)
 //                          + (K du_c^T L du_c + sum_k L_k (dD J dD^T)_kk) / 2,
 // E_J = phi_J^T L^-1 phi_J / (2 kn_J), the spring energy (SPEC 11). Phi0, Q, E0, the entry's
-// disp0, disp and the two rooms below are 27 numbers per held contact, against 6 points' 768
-// bytes.
+// disp0, disp, the two rooms and the broken points' margin and last step (5 numbers, below) are 32
+// numbers per held contact, against 6 points' 768 bytes.
 //
 // Whether the points stay linear is decided by a bound, row by row of dD: with rho_J = r_J - r_c,
 // |du_Jn - du_cn| <= |dD_n| max|rho| = e_n (dD_n: dD's row along n) and |du_Js - du_cs| <=
@@ -31,6 +31,13 @@
 //           read, max(un_max, u_n0) - un (below u_n0 = fn_max / kn no damage is read);
 //   shear:  to the cap without friction, ((1 - D) c_max - |fs|) / ks (friction only widens it),
 //           and max(|us|_max, u_s0) - |us|.
+// A broken point (D = 1) has no room, but under BL its force is kn min(0, un - M), M its largest
+// opening since it broke, and its shear cap mu max(0, -fn) is then 0: at its largest opening
+// (fn = 0, fs = 0) it carries nothing for as long as each step opens it further, whatever the
+// path. So a contact whose broken points are open is held too, with K, r_c, J and the radius of
+// its points that carry force (broken_point_sums), while each step's change of du_cn less
+// |change of dD_n| max|rho| is at least open_margin (a part in 1e9 of their opening, for rounding
+// in the law's un - un_old); that needs the last held step's du_cn and dD_n.
 // A held contact that leaves its room first has its points brought up to the last step (one
 // elastic update from the entry's histories: what the point loop would have stored, to rounding,
 // except a maximum below its elastic limit, which nothing reads and which a held step does not
@@ -63,6 +70,11 @@ struct HeldSums {
   Real room_n, room_s;  // the bound's rooms
   Real disp0[3];        // disp0(t0)
   Real disp[9];         // disp(t0), row-major
+  // With broken points: the smallest step of their opening the bound accepts (>= 0; -1 without
+  // broken points: no test), and the last held step's du_cn and dD's row along n.
+  Real open_margin;
+  Real last_du_n;
+  Real last_dd_n[3];
 };
 
 // The checkpoint's columns of HeldSums (core/archive.hpp), in its order.
@@ -75,6 +87,9 @@ void archive_fields(Record& r, S& h) {
   r.put(named("room_s", "m", h.room_s));
   for (auto& v : h.disp0) r.put(named("disp0", "m", v));
   for (auto& v : h.disp) r.put(named("disp", "1", v));
+  r.put(named("open_margin", "m", h.open_margin));
+  r.put(named("last_du_n", "m", h.last_du_n));
+  for (auto& v : h.last_dd_n) r.put(named("last_dd_n", "1", v));
 }
 
 // The held contacts of a network: a flag per contact and, per block of kBlock contacts (the
@@ -119,11 +134,21 @@ struct HeldEntryRow {
 };
 
 // Whether contact c, just evaluated through its points in the frame `f` at the poses `pose` (A = a,
-// B = b), is held from the next step: every point of it inside its room; if so, h receives its
-// sums.
-bool hold_contact(const CondensedSums& sums, Index c, const ContactFrame& f, const Real* pose,
-                  Index a, Index b, const LocalPointRecord* points, Index begin, Index end,
-                  HeldSums& h);
+// B = b), is held from the next step: every point of it inside its room or broken and open (at its
+// largest opening: fn = 0, fs = 0); if so, h receives its sums, and with broken points the
+// condensation's K, centroid, J and radius of c become those of its points that carry force
+// (broken_point_sums).
+bool hold_contact(CondensedSums& sums, Index c, const ContactFrame& f, const Real* pose, Index a,
+                  Index b, const LocalPointRecord* points, Index begin, Index end, HeldSums& h);
+
+// Contact c's K, centroid, J and radius in `sums` (elastic_condensation.hpp) over its points
+// [begin, end) that are not broken (`broken[m - begin]`), the radius over all of them, A's centre
+// at t = 0 being xa0: what a held contact with broken points is linear in (held_contacts.hpp).
+// Once a point of a contact is broken the contact is never intact again, so nothing else reads
+// these numbers of c; every hold of c sets them anew (and a checkpoint's restore, from the entry).
+void broken_point_sums(CondensedSums& sums, Index c, const Vec3& xa0,
+                       const LocalPointRecord* points, Index begin, Index end,
+                       const std::uint8_t* broken);
 
 // What the held contacts' kernel reads: the block's contacts from `begin`, their sums.
 struct HeldInputs {
@@ -146,6 +171,7 @@ struct HeldOutputs {
       torque_a[3][HeldContacts::kBlock];
   Real n[3][HeldContacts::kBlock], t1[3][HeldContacts::kBlock];
   Real energy[HeldContacts::kBlock];
+  Real du_n[HeldContacts::kBlock], dd_n[3][HeldContacts::kBlock];  // HeldSums::last_*
   std::int64_t kept[HeldContacts::kBlock];
 };
 

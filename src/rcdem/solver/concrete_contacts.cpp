@@ -273,8 +273,20 @@ void ConcreteContacts::apply_held_rows(const std::vector<HeldRow>& rows,
     h.sums(c) = w.sums;
     h.held[static_cast<std::size_t>(c)] = 1;
     h.saved[static_cast<std::size_t>(c)] = 1;
+    if (w.sums.open_margin >= 0) restore_broken_point_sums(c, e);
   }
   h.current = true;
+}
+
+void ConcreteContacts::restore_broken_point_sums(Index c,
+                                                 const std::vector<PlanePointState>& entry) {
+  // The sums hold_contact set when c entered, from its points as they were then.
+  const ContactNetwork& net = *net_;
+  std::vector<std::uint8_t> broken(entry.size());
+  for (std::size_t m = 0; m < entry.size(); ++m) broken[m] = entry[m].damage >= 1;
+  broken_point_sums(condensation_.sums, c, bodies_->position0[net.particle_a[c]],
+                    contacts_.point.data(), net.point_begin[c], net.point_begin[c + 1],
+                    broken.data());
 }
 
 void ConcreteContacts::visit_springs(SpringVisitor& v, const Bodies& bodies) const {

@@ -52,15 +52,17 @@ class ConcreteContacts final : public StepPart {
 
   // The checkpoint's "contacts" (core/archive.hpp). Restored: which contacts are intact follows
   // from the points' damage, and none is condensed (their histories were complete when saved);
-  // the held ones (format 6 on) stay held, their points current (held_contacts.hpp).
+  // the held ones (format 7 on) stay held, their points current (held_contacts.hpp). Format 6's
+  // held rows (before contacts with broken points were held) are not read: such a file restarts
+  // with nothing held, as formats 4 and 5 do (its points were caught up when written).
   template <class Archive, class Self>
   static void serialize(Archive& ar, Self& s) {
     ContactState::serialize(ar, "contacts", s.contacts_);
     std::vector<HeldRow> held;
     std::vector<HeldEntryRow> entry;
-    bool with_held = true;  // format 6 on; before, nothing was held (reads released them)
+    bool with_held = true;  // format 7 on (above)
     if constexpr (Archive::loading)
-      with_held = ar.version() >= 6;
+      with_held = ar.version() >= 7;
     else
       s.held_rows(held, entry);
     if (with_held) {
@@ -99,6 +101,9 @@ class ConcreteContacts final : public StepPart {
                               const std::vector<HeldEntryRow>& entry) const;
   // The rows of the contacts this rank evaluates held again, their points current.
   void apply_held_rows(const std::vector<HeldRow>& rows, const std::vector<HeldEntryRow>& entry);
+  // Held contact c with broken points: the condensation's sums hold_contact gave it, from its
+  // points' histories at entry.
+  void restore_broken_point_sums(Index c, const std::vector<PlanePointState>& entry);
 
   // A distributed run's: the ranks, the strain energy's blocks per rank, the spheres this rank
   // assigns (then every body from `scatter_spheres_end_`), all of them when not distributed.
