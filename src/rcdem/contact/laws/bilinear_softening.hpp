@@ -40,7 +40,9 @@ struct BilinearSoftening {
   static constexpr bool kCondensable = true;
   // A point that caps neither force and raises neither maximum the damage reads is linear in the
   // step's displacement with slopes kn, ks from where it stands (unloading keeps kn): its damaged
-  // contact may be held to its sums while that lasts (held_contacts.hpp, kHoldableLaw).
+  // contact may be held to its sums while that lasts (held_contacts.hpp, kHoldableLaw). So may
+  // one whose broken points keep opening: such a point's force is kn min(0, un - M), M its largest
+  // opening since it broke, and its shear cap then 0 (update below, cap_shear).
   static constexpr bool kHoldable = true;
 
   // Ultimate displacements of the softening triangles (S2); independent of the point's area.
