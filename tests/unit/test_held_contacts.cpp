@@ -107,12 +107,17 @@ TEST(HeldContacts, SameResultsAsVisitingThePointsToRounding) {
       static_cast<long long>(held.most_held));
 }
 
+// The simulation's concrete contacts (null if it has none).
+const ConcreteContacts* concrete_part(const Simulation& sim) {
+  for (const StepPart* part : sim.parts())
+    if (const auto* concrete = dynamic_cast<const ConcreteContacts*>(part)) return concrete;
+  return nullptr;
+}
+
 // The concrete contacts' strain energy as the run sums it (a held contact's from its sums).
 Real concrete_strain_energy(const Simulation& sim) {
   Real e = 0;
-  for (const StepPart* part : sim.parts())
-    if (const auto* concrete = dynamic_cast<const ConcreteContacts*>(part))
-      concrete->add_strain_energy(e);
+  concrete_part(sim)->add_strain_energy(e);
   return e;
 }
 
@@ -188,9 +193,7 @@ TEST(HeldContacts, ReadsAndCheckpointsDoNotChangeTheRun) {
 TEST(HeldContacts, NoHeldPointLeavesItsRoom) {
   const Scenario sc = pulled_box(true);
   Simulation sim(sc, build_specimen(sc));
-  const ConcreteContacts* concrete = nullptr;
-  for (const StepPart* part : sim.parts())
-    if (const auto* c = dynamic_cast<const ConcreteContacts*>(part)) concrete = c;
+  const ConcreteContacts* concrete = concrete_part(sim);
   ASSERT_NE(concrete, nullptr);
   const ContactNetwork& net = sim.specimen().contacts;
   Index checked = 0, with_broken = 0;
@@ -232,9 +235,7 @@ TEST(HeldContacts, NoHeldPointLeavesItsRoom) {
 TEST(HeldContacts, BrokenPointsOfAHeldContactKeepOpening) {
   const Scenario sc = pulled_box(true);
   Simulation sim(sc, build_specimen(sc));
-  const ConcreteContacts* concrete = nullptr;
-  for (const StepPart* part : sim.parts())
-    if (const auto* c = dynamic_cast<const ConcreteContacts*>(part)) concrete = c;
+  const ConcreteContacts* concrete = concrete_part(sim);
   ASSERT_NE(concrete, nullptr);
   const ContactNetwork& net = sim.specimen().contacts;
   std::vector<Real> last_un(static_cast<std::size_t>(net.point_count()), 0.0);

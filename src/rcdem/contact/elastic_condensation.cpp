@@ -16,6 +16,19 @@ void CondensedSums::resize(std::size_t n) {
   for (auto& v : j) v.assign(n, 0.0);
 }
 
+void CondensedSums::set_points(std::size_t i, Real k, Real rad, const Vec3& c,
+                               const Eigen::Matrix3d& jm) {
+  k_n[i] = k;
+  radius[i] = rad;
+  for (int d = 0; d < 3; ++d) centroid[d][i] = c[d];
+  j[0][i] = jm(0, 0);
+  j[1][i] = jm(1, 1);
+  j[2][i] = jm(2, 2);
+  j[3][i] = jm(0, 1);
+  j[4][i] = jm(0, 2);
+  j[5][i] = jm(1, 2);
+}
+
 ElasticCondensation ElasticCondensation::build(const ContactNetwork& net,
                                                const std::vector<Vec3>& x0) {
   ElasticCondensation e;
@@ -51,18 +64,10 @@ ElasticCondensation ElasticCondensation::build(const ContactNetwork& net,
       j += net.constants[m].kn * rho * rho.transpose();
       radius = std::max(radius, rho.norm());
     }
-    k.k_n[i] = k_n;
+    k.set_points(i, k_n, radius, centroid, j);
     k.alpha[i] = alpha;
-    k.radius[i] = radius;
     k.u_n0[i] = u_n0;
     k.u_s0[i] = u_s0;
-    for (int d = 0; d < 3; ++d) k.centroid[d][i] = centroid[d];
-    k.j[0][i] = j(0, 0);
-    k.j[1][i] = j(1, 1);
-    k.j[2][i] = j(2, 2);
-    k.j[3][i] = j(0, 1);
-    k.j[4][i] = j(0, 2);
-    k.j[5][i] = j(1, 2);
     // A zero or NaN limit (zero strength) never passes the bound; nothing else to exclude.
     e.eligible[i] = uniform && k_n > 0 && std::isfinite(alpha);
   }

@@ -56,6 +56,8 @@ struct CondensedSums {
   static constexpr std::size_t kBytesPerContact = 17 * sizeof(Real);
   bool empty() const { return k_n.empty(); }
   void resize(std::size_t n);
+  // Contact i's K, radius, centroid and J (symmetric: its xx, yy, zz, xy, xz, yz kept).
+  void set_points(std::size_t i, Real k, Real rad, const Vec3& c, const Eigen::Matrix3d& jm);
 };
 
 struct ElasticCondensation {

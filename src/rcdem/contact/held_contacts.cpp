@@ -389,15 +389,7 @@ void broken_point_sums(CondensedSums& sums, Index c, const Vec3& xa0,
     if (!broken[m - begin]) j += p.constants.kn * rho * rho.transpose();
     radius = std::max(radius, rho.norm());
   }
-  sums.k_n[i] = k_n;
-  sums.radius[i] = radius;
-  for (int d = 0; d < 3; ++d) sums.centroid[d][i] = centroid[d];
-  sums.j[0][i] = j(0, 0);
-  sums.j[1][i] = j(1, 1);
-  sums.j[2][i] = j(2, 2);
-  sums.j[3][i] = j(0, 1);
-  sums.j[4][i] = j(0, 2);
-  sums.j[5][i] = j(1, 2);
+  sums.set_points(i, k_n, radius, centroid, j);
 }
 
 namespace {
