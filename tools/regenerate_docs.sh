@@ -29,6 +29,8 @@ JOBS=(
   "k0|docs/case-study.md|AN0's K0 at 0.005 m/s"
   "table2|docs/calibration.md|Table 2's parameters on the 60, 80 and 160 mm cubes"
   "cal160|docs/calibration.md|the calibrated set on the 160 mm cube, packings 1 (Figure 7) and 2"
+  "cal160_half|docs/calibration.md|the halving test of the calibration's rates on the 160 mm cube, packing 1"
+  "continuum_k0|docs/case-study.md|the 3D elastic continuum's K0 of the AN0 beam, with the elastic pair"
   "quick_rate|docs/case-study.md|the quick set-up's halving test: AN0, AN1/AN2/AN4 NL-B at 0.0125 and 0.00625 m/s"
   "quick_study|docs/case-study.md|the quick study, 13 cases on packings 1-3"
   "size_quick_plain|docs/size-series.md|the plain beams 100/200/400 mm, quick, packings 1-3, and packing 1 at half rate"
@@ -94,6 +96,22 @@ job_cal160() {
   calibrate "$1/seed1" examples/uniaxial/cube160_calibrated.toml
   calibrate "$1/seed2" examples/uniaxial/cube160_calibrated.toml --set generation.seed=2 --peak-only
   $PY tools/calibration_tables.py results "$1"/seed{1,2} > "$1/table.md"
+}
+
+job_cal160_half() {
+  calibrate "$1/seed1_half" examples/uniaxial/cube160_calibrated.toml --rate-factor 0.5 --peak-only
+  $PY tools/calibration_tables.py results "$1/seed1_half" > "$1/table.md"
+}
+
+# The continuum needs no rcdem, only the elastic pair it measured (job elastic_pair, packing 1).
+job_continuum_k0() {
+  local moduli="$OUT/elastic_pair/seed1.moduli.txt"
+  [ -f "$OUT/elastic_pair/DONE" ] || { echo "continuum_k0 needs the job elastic_pair" >&2; return 1; }
+  local e nu
+  e=$(sed -n 's/^interior gauge: E = \([0-9.]*\) GPa, nu = .*/\1e9/p' "$moduli")
+  nu=$(sed -n 's/^interior gauge: E = .*, nu = \([0-9.]*\)$/\1/p' "$moduli")
+  [ -n "$e" ] && [ -n "$nu" ] || { echo "no E, nu in $moduli" >&2; return 1; }
+  $PY tools/continuum_beam_k0.py --E "$e" --nu "$nu" --levels 1,2,3 > "$1/k0.txt"
 }
 
 job_quick320() {
