@@ -31,6 +31,8 @@ JOBS=(
   "cal160|docs/calibration.md|the calibrated set on the 160 mm cube, packings 1 (Figure 7) and 2"
   "cal160_half|docs/calibration.md|the halving test of the calibration's rates on the 160 mm cube, packing 1"
   "continuum_k0|docs/case-study.md|the 3D elastic continuum's K0 of the AN0 beam, with the elastic pair"
+  "generate_an0|docs/model.md, docs/outputs.md|the full-size AN0 specimen's counts; meshio's blocks of its facets"
+  "model_checks|docs/model.md|the four-point, cyclic and stirrup examples, a refused porosity, AN4's memory"
   "quick_rate|docs/case-study.md|the quick set-up's halving test: AN0, AN1/AN2/AN4 NL-B at 0.0125 and 0.00625 m/s"
   "quick_study|docs/case-study.md|the quick study, 13 cases on packings 1-3"
   "size_quick_plain|docs/size-series.md|the plain beams 100/200/400 mm, quick, packings 1-3, and packing 1 at half rate"
@@ -112,6 +114,30 @@ job_continuum_k0() {
   nu=$(sed -n 's/^interior gauge: E = .*, nu = \([0-9.]*\)$/\1/p' "$moduli")
   [ -n "$e" ] && [ -n "$nu" ] || { echo "no E, nu in $moduli" >&2; return 1; }
   $PY tools/continuum_beam_k0.py --E "$e" --nu "$nu" --levels 1,2,3 > "$1/k0.txt"
+}
+
+job_generate_an0() {
+  [ -f "$1/an0/summary.json" ] || "$RCDEM" -q generate examples/three_point_bending/AN0.toml -o "$1/an0" --force
+  $PY tools/docs_numbers.py counts "$1/an0" > "$1/counts.txt"
+  $PY -c "import meshio, sys; m = meshio.read(sys.argv[1]); print(len(m.cells), 'cell blocks:',
+    sorted({len(c.data[0]) for c in m.cells}), 'vertices; meshio', meshio.__version__)" \
+    "$1/an0/facets.vtu" > "$1/facet_blocks.txt"
+}
+
+# The regression scripts print the numbers docs/model.md quotes (their `ok` lines).
+job_model_checks() {
+  for check in four_point cyclic stirrups; do
+    $PY tests/regression/check_$check.py "$RCDEM" . > "$1/$check.txt"
+  done
+  run "$1/stirrups_run" examples/stirrups/beam.toml
+  $PY tools/docs_numbers.py stirrups "$1/stirrups_run" > "$1/stirrups_run.txt"
+  if "$RCDEM" -q generate tests/bad_input/porosity_unreachable.toml -o "$1/porosity" --force \
+       2> "$1/porosity.txt"; then
+    echo "porosity_unreachable.toml was not refused" >&2
+    return 1
+  fi
+  /usr/bin/time -v "$RCDEM" -q run examples/three_point_bending/study/AN4_NL-B.toml --threads 1 \
+    --set stop.steps=20 -o "$1/an4_memory" --force 2> "$1/an4_memory.txt"
 }
 
 job_quick320() {
