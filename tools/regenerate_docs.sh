@@ -203,6 +203,7 @@ do_job() {
   local name=$1 dir="$OUT/$1"
   [ -f "$dir/DONE" ] && return 0
   mkdir "$OUT/$name.claim" 2> /dev/null || return 0
+  echo $$ > "$OUT/$name.claim/pid"
   mkdir -p "$dir"
   local start
   start=$(date +%s)
@@ -219,7 +220,7 @@ do_job() {
   else
     echo "$(date -u '+%F %H:%M:%S') FAILED $name (log $dir/log)" >> "$OUT/progress.log"
   fi
-  rmdir "$OUT/$name.claim"
+  rm -rf "$OUT/$name.claim"
 }
 
 worker() {
@@ -250,7 +251,12 @@ if [ -f "$OUT/COMMIT" ] && [ "$(cat "$OUT/COMMIT")" != "$version" ]; then
   exit 1
 fi
 echo "$version" > "$OUT/COMMIT"
-rm -rf "$OUT"/*.claim   # claims of an interrupted call: this call is the only one running
+# Claims of an interrupted call (its process gone); a call still running keeps its own.
+for claim in "$OUT"/*.claim; do
+  [ -d "$claim" ] || continue
+  pid=$(cat "$claim/pid" 2> /dev/null || true)
+  if [ -z "$pid" ] || ! kill -0 "$pid" 2> /dev/null; then rm -rf "$claim"; fi
+done
 for ((w = 0; w < workers; ++w)); do worker "${selected[@]}" & done
 wait
 if [ -f "$OUT/size_transition/DONE" ] && [ -f "$OUT/size_quick_plain/DONE" ] &&
