@@ -45,31 +45,21 @@ ElasticCondensation ElasticCondensation::build(const ContactNetwork& net,
     if (end == begin) continue;
     const Real alpha = net.constants[begin].ks / net.constants[begin].kn;
     bool uniform = true;
-    Real k_n = 0;
-    Vec3 moment = Vec3::Zero();
     Real u_n0 = std::numeric_limits<Real>::infinity(), u_s0 = u_n0;
     for (Index m = begin; m < end; ++m) {
       const LocalPointConstants& p = net.constants[m];
       uniform &= std::abs(p.ks - alpha * p.kn) <= 1e-12 * p.ks;
-      k_n += p.kn;
-      moment += p.kn * (net.point_position0[m] - xa0);
       u_n0 = std::min(u_n0, p.fn_max / p.kn);
       u_s0 = std::min(u_s0, p.c_max / p.ks);
     }
-    const Vec3 centroid = moment / k_n;
-    Eigen::Matrix3d j = Eigen::Matrix3d::Zero();
-    Real radius = 0;
-    for (Index m = begin; m < end; ++m) {
-      const Vec3 rho = net.point_position0[m] - xa0 - centroid;
-      j += net.constants[m].kn * rho * rho.transpose();
-      radius = std::max(radius, rho.norm());
-    }
-    k.set_points(i, k_n, radius, centroid, j);
+    store_point_sums(
+        k, i, begin, end, xa0, [&](Index m) { return net.constants[m].kn; },
+        [&](Index m) { return net.point_position0[m]; }, [](Index) { return true; });
     k.alpha[i] = alpha;
     k.u_n0[i] = u_n0;
     k.u_s0[i] = u_s0;
     // A zero or NaN limit (zero strength) never passes the bound; nothing else to exclude.
-    e.eligible[i] = uniform && k_n > 0 && std::isfinite(alpha);
+    e.eligible[i] = uniform && k.k_n[i] > 0 && std::isfinite(alpha);
   }
   e.intact = e.eligible;
   e.condensed.assign(nc, 0);

@@ -29,6 +29,7 @@
 // histories are brought up to date only when someone reads them (Simulation::contacts(): snapshots,
 // checkpoints), from the kinematics of the step's evaluation; the strain energy a history row
 // reads comes from the sums (condensed_strain_energy below) and the damage needs nothing (D = 0).
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -59,6 +60,36 @@ struct CondensedSums {
   // Contact i's K, radius, centroid and J (symmetric: its xx, yy, zz, xy, xz, yz kept).
   void set_points(std::size_t i, Real k, Real rad, const Vec3& c, const Eigen::Matrix3d& jm);
 };
+
+// A contact's K = sum kn, kn-weighted centroid r_c (relative to A's centre at t = 0, xa0) and
+// J = sum kn rho rho^T over its points m in [begin, end) for which carries(m) holds, and the
+// radius max |rho| over all of them; kn(m) and position0(m) give a point's normal stiffness and
+// position at t = 0. With no point carrying, K = J = 0 and r_c is every point's centroid. The
+// condensation's build (every point) and a held contact's broken points (held_contacts.hpp) alike.
+template <typename Kn, typename Position0, typename Carries>
+void store_point_sums(CondensedSums& sums, std::size_t i, Index begin, Index end, const Vec3& xa0,
+                      Kn kn, Position0 position0, Carries carries) {
+  Real k_n = 0, k_all = 0;
+  Vec3 moment = Vec3::Zero(), moment_all = Vec3::Zero();
+  for (Index m = begin; m < end; ++m) {
+    const Vec3 r = kn(m) * (position0(m) - xa0);
+    k_all += kn(m);
+    moment_all += r;
+    if (!carries(m)) continue;
+    k_n += kn(m);
+    moment += r;
+  }
+  // From the points alone: a value left by an earlier hold would differ after a restart.
+  const Vec3 centroid = k_n > 0 ? Vec3(moment / k_n) : Vec3(moment_all / k_all);
+  Eigen::Matrix3d j = Eigen::Matrix3d::Zero();
+  Real radius = 0;
+  for (Index m = begin; m < end; ++m) {
+    const Vec3 rho = position0(m) - xa0 - centroid;
+    if (carries(m)) j += kn(m) * rho * rho.transpose();
+    radius = std::max(radius, rho.norm());
+  }
+  sums.set_points(i, k_n, radius, centroid, j);
+}
 
 struct ElasticCondensation {
   CondensedSums sums;                   // per contact

@@ -365,31 +365,11 @@ RCDEM_SIMD_TARGET_AVX512 void held_block_avx512(const HeldInputs& in, const Inde
 void broken_point_sums(CondensedSums& sums, Index c, const Vec3& xa0,
                        const LocalPointRecord* points, Index begin, Index end,
                        const std::uint8_t* broken) {
-  // ElasticCondensation::build's arithmetic over the points that carry force.
-  const auto i = static_cast<std::size_t>(c);
-  Real k_n = 0, k_all = 0;
-  Vec3 moment = Vec3::Zero(), moment_all = Vec3::Zero();
-  for (Index m = begin; m < end; ++m) {
-    const LocalPointRecord& p = points[m];
-    const Vec3 r = p.constants.kn * (Vec3(p.x0, p.y0, p.z0) - xa0);
-    k_all += p.constants.kn;
-    moment_all += r;
-    if (broken[m - begin]) continue;
-    k_n += p.constants.kn;
-    moment += r;
-  }
-  // With every point broken nothing carries force (K = J = 0); the centroid is then all the
-  // points' (from the points alone: a value left by an earlier hold would differ after a restart).
-  const Vec3 centroid = k_n > 0 ? Vec3(moment / k_n) : Vec3(moment_all / k_all);
-  Eigen::Matrix3d j = Eigen::Matrix3d::Zero();
-  Real radius = 0;
-  for (Index m = begin; m < end; ++m) {
-    const LocalPointRecord& p = points[m];
-    const Vec3 rho = Vec3(p.x0, p.y0, p.z0) - xa0 - centroid;
-    if (!broken[m - begin]) j += p.constants.kn * rho * rho.transpose();
-    radius = std::max(radius, rho.norm());
-  }
-  sums.set_points(i, k_n, radius, centroid, j);
+  store_point_sums(
+      sums, static_cast<std::size_t>(c), begin, end, xa0,
+      [&](Index m) { return points[m].constants.kn; },
+      [&](Index m) { return Vec3(points[m].x0, points[m].y0, points[m].z0); },
+      [&](Index m) { return broken[m - begin] == 0; });
 }
 
 namespace {
