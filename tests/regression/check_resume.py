@@ -233,7 +233,7 @@ try:
           "manifest: interrupted by SIGINT, its last checkpoint")
     if ck:
         h = parse_checkpoint(ck[-1][1])
-        check(h["magic"] == b"RCDEMCKP" and h["version"] == 7 and h["bom"] == 0x01020304
+        check(h["magic"] == b"RCDEMCKP" and h["version"] == 8 and h["bom"] == 0x01020304
               and h["size"] == len(h["data"]) and h["step"] == at_step and h["crc_ok"]
               and h["writer"].startswith("rcdem "),
               f"the checkpoint reads as documented (h5py, the image of format 7: "

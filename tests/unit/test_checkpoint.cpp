@@ -471,7 +471,7 @@ std::map<std::string, SectionEntry> section_table(const std::string& file) {
   return sections;
 }
 
-// The sections' widths are format version 7's (docs/checkpoint.md), now that each struct's
+// The sections' widths are format version 8's (docs/checkpoint.md), now that each struct's
 // serialize() names its columns and the width follows from their types: a column added or dropped
 // without a new format version fails here, empty tables included (small_run pulls no bar).
 // small_run.toml after 20 steps and a history row, with every part a run checkpoints.
@@ -491,7 +491,7 @@ struct SmallRunParts {
 };
 
 TEST(Checkpoint, SectionWidthsAreThoseOfTheFormatVersion) {
-  ASSERT_EQ(io::kCheckpointVersion, 7U);
+  ASSERT_EQ(io::kCheckpointVersion, 8U);
   SmallRunParts run;
   Simulation& sim = run.sim;
   io::History& history = run.history;
@@ -502,7 +502,7 @@ TEST(Checkpoint, SectionWidthsAreThoseOfTheFormatVersion) {
       {"bodies.step", 3},
       {"contacts", 17},
       {"contacts.points", 9},
-      {"contacts.held", 33},
+      {"contacts.held", 35},
       {"contacts.held.entry", 10},
       {"interface.0", 17},
       {"interface.0.points", 9},

@@ -188,15 +188,17 @@ TEST(HeldContacts, ReadsAndCheckpointsDoNotChangeTheRun) {
 // held contacts' points up to the last step through the law itself (one update from their entry
 // histories), so a point that crossed a limit while held would come back from the read with more
 // damage than it entered with (D never decreases, S4); none does, none stands above its cap, and
-// every broken point of a held contact comes back open, carrying nothing (held contacts with
-// broken points are met).
+// every broken point of a held contact comes back open, carrying nothing. A softening point of a
+// held contact comes back on its normal envelope (fn = (1 - D) fn_max) with its damage grown but
+// not broken, and its shear below its shrunken cap (held contacts with broken points and with
+// softening points are met).
 TEST(HeldContacts, NoHeldPointLeavesItsRoom) {
   const Scenario sc = pulled_box(true);
   Simulation sim(sc, build_specimen(sc));
   const ConcreteContacts* concrete = concrete_part(sim);
   ASSERT_NE(concrete, nullptr);
   const ContactNetwork& net = sim.specimen().contacts;
-  Index checked = 0, with_broken = 0;
+  Index checked = 0, with_broken = 0, softening_points = 0;
   for (int k = 1; k <= kSteps; ++k) {
     sim.step();
     if (k % 5 != 0) continue;
@@ -208,11 +210,21 @@ TEST(HeldContacts, NoHeldPointLeavesItsRoom) {
     const auto& read = sim.contacts().point.records;  // caught up
     for (Index c = 0; c < net.contact_count(); ++c) {
       if (!held[static_cast<std::size_t>(c)]) continue;
+      const bool softening = concrete->condensation().held.sums(c).slope_n < 0;
       for (Index m = net.point_begin[c]; m < net.point_begin[c + 1]; ++m) {
         const auto i = static_cast<std::size_t>(m);
         const PlanePointState& h = read[i].history;
+        const LocalPointConstants& kc = read[i].constants;
+        if (softening && before[i] < 1) {
+          ASSERT_GE(h.damage, before[i]) << "step " << k << ", contact " << c << ", point " << m;
+          ASSERT_LT(h.damage, 1.0) << "step " << k << ", contact " << c << ", point " << m;
+          ASSERT_EQ(h.fn, (1 - h.damage) * kc.fn_max) << "step " << k << ", contact " << c;
+          ASSERT_LT(std::sqrt(h.fs.squaredNorm()), (1 - h.damage) * kc.c_max) << "step " << k;
+          ++softening_points;
+          continue;
+        }
         ASSERT_EQ(h.damage, before[i]) << "step " << k << ", contact " << c << ", point " << m;
-        ASSERT_LE(h.fn, (1 - h.damage) * read[i].constants.fn_max) << "step " << k;
+        ASSERT_LE(h.fn, (1 - h.damage) * kc.fn_max) << "step " << k;
         if (h.damage < 1) continue;
         ASSERT_EQ(h.fn, 0.0) << "step " << k << ", contact " << c << ", point " << m;
         ASSERT_EQ(h.fs.squaredNorm(), 0.0) << "step " << k << ", contact " << c;
@@ -223,39 +235,45 @@ TEST(HeldContacts, NoHeldPointLeavesItsRoom) {
   }
   EXPECT_GT(checked, 10000) << "the test must meet held contacts";
   EXPECT_GT(with_broken, 1000) << "... and held contacts with broken points";
-  std::printf("held contacts checked %lld, with broken points %lld\n",
-              static_cast<long long>(checked), static_cast<long long>(with_broken));
+  EXPECT_GT(softening_points, 1000) << "... and softening points of held contacts";
+  std::printf("held contacts checked %lld, with broken points %lld; softening points %lld\n",
+              static_cast<long long>(checked), static_cast<long long>(with_broken),
+              static_cast<long long>(softening_points));
 }
 
 // A broken point of a held contact carries nothing only while its opening grows (its force is
-// kn min(0, un - M), M its largest opening), so a contact with broken points stays held only while
-// each step opens them further (the kernel's per-step test): read at every step (reads change
-// nothing, above), every broken point of a contact held after a step is at least as open as it
-// was after the step before.
-TEST(HeldContacts, BrokenPointsOfAHeldContactKeepOpening) {
+// kn min(0, un - M), M its largest opening), and a softening point follows its envelope only while
+// its opening grows, so a contact with broken or softening points stays held only while each step
+// opens them further (the kernel's per-step test): read at every step (reads change nothing,
+// above), every such point of a contact held after a step is at least as open as it was after the
+// step before.
+TEST(HeldContacts, BrokenAndSofteningPointsOfAHeldContactKeepOpening) {
   const Scenario sc = pulled_box(true);
   Simulation sim(sc, build_specimen(sc));
   const ConcreteContacts* concrete = concrete_part(sim);
   ASSERT_NE(concrete, nullptr);
   const ContactNetwork& net = sim.specimen().contacts;
   std::vector<Real> last_un(static_cast<std::size_t>(net.point_count()), 0.0);
-  Index checked = 0;
+  Index broken = 0, softening = 0;
   for (int k = 1; k <= kSteps; ++k) {
     sim.step();
-    const std::vector<std::uint8_t>& held = concrete->condensation().held.held;
+    const HeldContacts& h = concrete->condensation().held;
     const auto& points = sim.contacts().point.records;  // caught up
     for (Index c = 0; c < net.contact_count(); ++c) {
-      if (k == 1 || !held[static_cast<std::size_t>(c)]) continue;
+      if (k == 1 || !h.held[static_cast<std::size_t>(c)]) continue;
+      const bool softening_contact = h.sums(c).slope_n < 0;
       for (Index m = net.point_begin[c]; m < net.point_begin[c + 1]; ++m) {
         const auto i = static_cast<std::size_t>(m);
-        if (points[i].history.damage < 1) continue;
+        const Real d = points[i].history.damage;
+        if (d < 1 && !softening_contact) continue;
         ASSERT_GE(points[i].history.un, last_un[i]) << "step " << k << ", contact " << c;
-        ++checked;
+        ++(d < 1 ? softening : broken);
       }
     }
     for (std::size_t i = 0; i < last_un.size(); ++i) last_un[i] = points[i].history.un;
   }
-  EXPECT_GT(checked, 10000) << "the test must meet broken points of held contacts";
+  EXPECT_GT(broken, 10000) << "the test must meet broken points of held contacts";
+  EXPECT_GT(softening, 1000) << "... and softening points of held contacts";
 }
 
 // With holding, the energy a history row reads is kept by the step (evaluate_held), and it is the

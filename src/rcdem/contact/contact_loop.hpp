@@ -326,13 +326,15 @@ template <typename Law>
 // sums in SIMD lanes while their points stay inside their rooms. The others have their points
 // brought up to the last evaluation (`previous`) in the stored frame, are released, get their
 // frame in `frames[c - begin]` and join the visited ones `visit[0, visits)`, kept in contact order
-// (the block's dissipation is summed in that order). Returns the new count of visits.
+// (the block's dissipation is summed in that order). Returns the new count of visits; adds the
+// energy the kept ones' softening points dissipate to `damage`, in list order.
 template <typename Law>
 [[gnu::noinline]] Index evaluate_held_contacts(const Law& law, const ContactInputs& in,
                                                const ContactInputs& previous, ContactState& cs,
                                                ElasticCondensation& cond, const Index* held,
                                                Index count, ContactFrame* frames, Index begin,
-                                               Real* energy, Index* visit, Index visits) {
+                                               Real* energy, Index* visit, Index visits,
+                                               Real& damage) {
   const HeldInputs hi{cond.sums,
                       in.net.particle_a.data(),
                       in.net.particle_b.data(),
@@ -354,8 +356,9 @@ template <typename Law>
       cs.torque_a[c] = Vec3(out.torque_a[0][k], out.torque_a[1][k], out.torque_a[2][k]);
       cs.normal[c] = Vec3(out.n[0][k], out.n[1][k], out.n[2][k]);
       cs.tangent[c] = Vec3(out.t1[0][k], out.t1[1][k], out.t1[2][k]);
-      cs.dissipated_damage[c] = 0.0;
+      cs.dissipated_damage[c] = out.dissipated[k];
       cs.dissipated_friction[c] = 0.0;
+      damage += out.dissipated[k];
       if (energy) energy[c] = out.energy[k];
       HeldSums& h = cond.held.sums(c);
       if (h.open_margin >= 0) {  // with broken points: this step is the next one's last
@@ -379,14 +382,14 @@ template <typename Law>
 [[gnu::noinline]] inline void hold_visited_contacts(const ContactInputs& in, const ContactState& cs,
                                                     ElasticCondensation& cond, const Index* visit,
                                                     Index count, const ContactFrame* frames,
-                                                    Index begin) {
+                                                    Index begin, Real u_nu) {
   const ContactNetwork& net = in.net;
   for (Index k = 0; k < count; ++k) {
     const Index c = visit[k];
     if (cond.intact[c] || !cond.eligible[c]) continue;
     HeldSums h;
     if (hold_contact(cond.sums, c, frames[c - begin], in.pose, net.particle_a[c], net.particle_b[c],
-                     cs.point.data(), net.point_begin[c], net.point_begin[c + 1], h)) {
+                     cs.point.data(), net.point_begin[c], net.point_begin[c + 1], u_nu, h)) {
       cond.held.sums(c) = h;
       cond.held.held[c] = 1;
     }
@@ -445,6 +448,7 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
         Index visit[CondensedBlock::kSize], held[CondensedBlock::kSize];
         ContactFrame frames[CondensedBlock::kSize];
         Index visits = 0, helds = 0;
+        Real held_damage = 0.0;
         for (Index c = begin; c < end; ++c) {
           const bool was_condensed = cond->condensed[c];
           const bool keep = cond->intact[c] && block.below_limits[c - begin];
@@ -469,7 +473,7 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
         if constexpr (kHoldableLaw<Law>)
           if (helds > 0)
             visits = evaluate_held_contacts(law, in, *previous, cs, *cond, held, helds, frames,
-                                            begin, energy, visit, visits);
+                                            begin, energy, visit, visits, held_damage);
         PointTransitions changed;
         for (Index k = 0; k < visits; ++k)
           note_transitions(cs, visit[k],
@@ -477,17 +481,18 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
                            changed);
         if constexpr (kHoldableLaw<Law>)
           if (cond->held.enabled)
-            hold_visited_contacts(in, cs, *cond, visit, visits, frames, begin);
+            hold_visited_contacts(in, cs, *cond, visit, visits, frames, begin, law.u_nu());
         if (energy) keep_point_energies(law, in.net, cs, visit, visits, energy);
         cs.block_transitions[static_cast<std::size_t>(begin / kBlock)] = changed;
-        // Contacts evaluated from their sums dissipate exactly zero, so the kernel does not store
-        // it (16 bytes a contact less to write) and the block sums its visited contacts, in contact
-        // order: the same sum as over all of them with zeros.
+        // Contacts evaluated from the condensation's sums dissipate exactly zero, so that kernel
+        // does not store it (16 bytes a contact less to write) and the block sums its visited
+        // contacts, in contact order, then adds what its held ones' softening points dissipated.
         Real damage = 0.0, friction = 0.0;
         for (Index k = 0; k < visits; ++k) {
           damage += cs.dissipated_damage[visit[k]];
           friction += cs.dissipated_friction[visit[k]];
         }
+        damage += held_damage;
         cs.block_damage[begin / CondensedBlock::kSize] = damage;
         cs.block_friction[begin / CondensedBlock::kSize] = friction;
       });

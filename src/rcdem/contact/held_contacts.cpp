@@ -6,6 +6,7 @@
 
 #include "rcdem/contact/contact_kinematics.hpp"
 #include "rcdem/contact/elastic_condensation.hpp"
+#include "rcdem/contact/laws/bilinear_softening.hpp"
 #include "rcdem/core/simd_level.hpp"
 #include "rcdem/core/small_angle.hpp"
 #include "rcdem/state/body_poses.hpp"
@@ -143,9 +144,9 @@ void kinematics_at_poses(const CondensedSums& s, std::size_t i, const Vec3& n, c
 }
 
 // The sums' numbers in HeldSums order (phi0, q, energy0, room_n, room_s, disp0, disp,
-// open_margin, last_du_n, last_dd_n).
-constexpr int kHeldSize = 32;
-static_assert(sizeof(HeldSums) == kHeldSize * sizeof(Real), "HeldSums is 32 doubles");
+// open_margin, last_du_n, last_dd_n, slope_n, shrink_s).
+constexpr int kHeldSize = 34;
+static_assert(sizeof(HeldSums) == kHeldSize * sizeof(Real), "HeldSums is 34 doubles");
 
 // du_c = d0 + dD r_c and dD (row-major) since the entry, from the sums `h` (HeldSums order).
 template <typename H>
@@ -177,15 +178,20 @@ template <typename H>
   Real step_dd_sq = 0.0;
   for (int e = 0; e < 3; ++e) step_dd_sq += (dd[e] - h[29 + e]) * (dd[e] - h[29 + e]);
   const bool opening = (h[27] < 0) | ((du[0] - h[28]) - std::sqrt(step_dd_sq) * radius >= h[27]);
-  return (du[0] + spread_n < h[13]) & (du_s + spread_s < h[14]) & opening;
+  // Softening points' shear caps shrink as they open: by shrink_s per unit of their opening.
+  const Real room_s = h[14] - h[33] * std::max(du[0] + spread_n, 0.0);
+  return (du[0] + spread_n < h[13]) & (du_s + spread_s < room_s) & opening;
 }
 
-// The energy (held_contacts.hpp) from the change, K, alpha and J (row-major).
+// The energy (held_contacts.hpp) from the change, K, alpha and J (row-major). Along n the
+// points' slope is slope_n kn and their energy fn^2 / 2 kn, so that row's work carries slope_n
+// and its quadratic term slope_n^2 (both 1 inside the envelope).
 template <typename H>
 [[gnu::always_inline]] inline Real energy_from_change(const H& h, Real k, Real al,
                                                       const Real (&jm)[9], const Real (&du)[3],
                                                       const Real (&dd)[9]) {
-  const Real l[3] = {1.0, al, al};
+  const Real slope = h[32];
+  const Real l[3] = {slope * slope, al, al};
   Real work = 0.0, quad = 0.0;
   for (int r = 0; r < 3; ++r) {
     work += h[r] * du[r];
@@ -195,8 +201,29 @@ template <typename H>
       for (int b = 0; b < 3; ++b) djd += dd[3 * r + a] * jm[3 * a + b] * dd[3 * r + b];
     quad += l[r] * djd;
     for (int m = 0; m < 3; ++m) work += dd[3 * r + m] * h[3 + 3 * m + r];  // dD_rm Q_mr
+    if (r == 0) work *= slope;
   }
   return h[12] - work + 0.5 * quad;
+}
+
+// The energy softening points dissipate in the step (BilinearSoftening::update: the mean force
+// times (fn_trial - fn) / kn, (1 + beta) du_n at each point, slope_n = -beta), from the change
+// since entry du, dD and the last step's (h), K and J: with fn_J = fn_J(t0) - beta kn_J du_Jn,
+//   sum_J (fn_J(t - 1) + fn_J(t)) / 2 (1 + beta) delta_J,  delta_J = du_Jn(t) - du_Jn(t - 1),
+// summed through Phi0, Q's column n, K and J as the force is. Zero for points inside the envelope.
+template <typename H>
+[[gnu::always_inline]] inline Real softening_dissipation(const H& h, Real k, const Real (&jm)[9],
+                                                         const Real (&du)[3], const Real (&dd)[9]) {
+  const Real beta = -h[32];
+  const Real step_c = du[0] - h[28], sum_c = du[0] + h[28];
+  Real force_step = h[0] * step_c, quad = k * sum_c * step_c;  // -sum fn0 delta; sum kn s delta
+  for (int a = 0; a < 3; ++a) {
+    const Real step_a = dd[a] - h[29 + a];
+    force_step += h[3 + 3 * a] * step_a;
+    for (int b = 0; b < 3; ++b) quad += (dd[b] + h[29 + b]) * jm[3 * b + a] * step_a;
+  }
+  const Real d = 0.5 * (1 + beta) * (-2 * force_step - beta * quad);
+  return beta > 0 ? d : 0.0;
 }
 
 // A block's held contacts `list[0, count)` (kHeld: with their energies), in SIMD lanes: the turned
@@ -296,7 +323,7 @@ template <bool kEnergy>
     for (int e = 0; e < 3; ++e) out.dd_n[e][l] = dd[e];
     // Force and moment in the frame (held_contacts.hpp), then in the world.
     const Real kn = g.kn[l], al = g.al[l];
-    const Real lam[3] = {1.0, al, al};
+    const Real lam[3] = {hl[32], al, al};
     // J's six entries are xx, yy, zz, xy, xz, yz.
     const Real jm[9] = {g.j[0][l], g.j[3][l], g.j[4][l], g.j[3][l], g.j[1][l],
                         g.j[5][l], g.j[4][l], g.j[5][l], g.j[2][l]};
@@ -338,6 +365,7 @@ template <bool kEnergy>
       out.t1[i][l] = t1[i];
     }
     if constexpr (kEnergy) out.energy[l] = energy_from_change(hl, kn, al, jm, du, dd);
+    out.dissipated[l] = softening_dissipation(hl, kn, jm, du, dd);
   }
 }
 
@@ -381,36 +409,94 @@ bool broken_and_open(const PlanePointState& s) {
   return s.damage >= 1 && s.fn == 0 && s.fs.x == 0 && s.fs.y == 0;
 }
 
-}  // namespace
+// A point softening along its normal envelope at its largest opening, with no shear damage read
+// (BilinearSoftening::update): while it keeps opening its force is fn = fn_max (u_nu - un) /
+// (u_nu - u_n0), slope -beta kn with beta = u_n0 / (u_nu - u_n0), and its shear cap (1 - D) c_max
+// shrinks by gamma = (c_max / ks) / (u_nu - u_n0) times ks per unit of opening. Tested without a
+// division first: most contacts that fail to be held fail here.
+bool on_normal_envelope(const LocalPointRecord& p) {
+  const PlanePointState& st = p.history;
+  const LocalPointConstants& k = p.constants;
+  return st.damage > 0 && st.damage < 1 && st.un == st.un_max &&
+         st.fn == (1 - st.damage) * k.fn_max && !(k.ks * k.ks * st.us_max_sq > k.c_max * k.c_max);
+}
 
-bool hold_contact(CondensedSums& sums, Index c, const ContactFrame& f, const Real* pose, Index a,
-                  Index b, const LocalPointRecord* points, Index begin, Index end, HeldSums& h) {
-  // The rooms first: most contacts that fail do so at one point (a broken or capped one), and
-  // every visited damaged contact is tried every step. A broken point has no room (its shear cap
-  // (1 - D) c_max - |fs| is not positive): it must be open instead, tested without the rooms'
-  // divisions and roots.
-  constexpr Index kMaxPoints = 64;
-  std::uint8_t broken[kMaxPoints];
-  if (end - begin > kMaxPoints) return false;
-  Real open_margin = -1;  // no broken point: no test of their opening
+// Such a point's rooms (along n to a margin short of u_nu, D = 1; across as point_rooms'), beta
+// and gamma; false if its damage is not its opening's alone or a room is not positive.
+bool softening_rooms(const LocalPointRecord& p, Real u_nu, Real& room_n, Real& room_s, Real& beta,
+                     Real& gamma) {
+  const PlanePointState& st = p.history;
+  const LocalPointConstants& k = p.constants;
+  const Real u_n0 = k.fn_max / k.kn;
+  if (st.damage != softening_damage(st.un_max, u_n0, u_nu)) return false;
+  Real unused;
+  point_rooms(p, unused, room_s);
+  room_n = kLimitMargin * u_nu - st.un - kRounding * (u_nu + std::abs(st.un));
+  beta = u_n0 / (u_nu - u_n0);
+  gamma = (k.c_max / k.ks) / (u_nu - u_n0);
+  return room_n > 0 && room_s > 0 && beta > 0;
+}
+
+// The points' kinds: broken and open (b), softening along the envelope (s) or inside it (i); a
+// contact holds i and b, or s and b. Then the rooms, the slope (every softening point's beta the
+// same to kSameSlope) and the shrink. Returns false if the contact cannot be held.
+constexpr Real kSameSlope = 1e-9;
+bool point_kinds(const LocalPointRecord* points, Index begin, Index end, Real u_nu,
+                 std::uint8_t* kind, Real& open_margin, Real& room_n, Real& room_s, Real& slope_n,
+                 Real& shrink_s) {
+  bool inside = false, softening = false;
+  open_margin = -1;  // no broken or softening point: no test of their opening
   for (Index m = begin; m < end; ++m) {
     const PlanePointState& st = points[m].history;
-    broken[m - begin] = st.damage >= 1;
-    if (!broken[m - begin]) continue;
-    if (!broken_and_open(st)) return false;
+    char k = 'i';
+    if (st.damage >= 1) {
+      if (!broken_and_open(st)) return false;
+      k = 'b';
+    } else if (st.damage > 0 && on_normal_envelope(points[m])) {
+      k = 's';
+    }
+    if ((k == 'i' && softening) || (k == 's' && inside)) return false;
+    inside |= k == 'i';
+    softening |= k == 's';
+    kind[m - begin] = static_cast<std::uint8_t>(k);
     // The step's opening must exceed what rounding in the law's un - un_old could turn over.
-    open_margin = std::max(open_margin, kRounding * std::abs(st.un));
+    if (k != 'i') open_margin = std::max(open_margin, kRounding * std::abs(st.un));
   }
-  Real room_n = std::numeric_limits<Real>::infinity(), room_s = room_n;
+  room_n = room_s = std::numeric_limits<Real>::infinity();
+  slope_n = 1;
+  shrink_s = 0;
   for (Index m = begin; m < end; ++m) {
-    if (broken[m - begin]) continue;
-    Real rn, rs;
-    point_rooms(points[m], rn, rs);
-    // NaN rooms (a zero strength) fail here too.
-    if (!(rn > 0 && rs > 0)) return false;
+    const char k = static_cast<char>(kind[m - begin]);
+    if (k == 'b') continue;
+    Real rn, rs, beta, gamma;
+    if (k == 's') {
+      if (!softening_rooms(points[m], u_nu, rn, rs, beta, gamma)) return false;
+      if (slope_n < 0 && !(std::abs(beta + slope_n) <= kSameSlope * beta)) return false;
+      slope_n = -beta;
+      shrink_s = std::max(shrink_s, gamma);
+    } else {
+      point_rooms(points[m], rn, rs);
+      // NaN rooms (a zero strength) fail here too.
+      if (!(rn > 0 && rs > 0)) return false;
+    }
     room_n = std::min(room_n, rn);
     room_s = std::min(room_s, rs);
   }
+  return true;
+}
+
+}  // namespace
+
+bool hold_contact(CondensedSums& sums, Index c, const ContactFrame& f, const Real* pose, Index a,
+                  Index b, const LocalPointRecord* points, Index begin, Index end, Real u_nu,
+                  HeldSums& h) {
+  constexpr Index kMaxPoints = 64;
+  std::uint8_t kind[kMaxPoints], broken[kMaxPoints];
+  if (end - begin > kMaxPoints) return false;
+  Real open_margin, room_n, room_s, slope_n, shrink_s;
+  if (!point_kinds(points, begin, end, u_nu, kind, open_margin, room_n, room_s, slope_n, shrink_s))
+    return false;
+  for (Index m = 0; m < end - begin; ++m) broken[m] = kind[m] == 'b';
   if (open_margin >= 0) broken_point_sums(sums, c, f.xa0, points, begin, end, broken);
   const auto i = static_cast<std::size_t>(c);
   const Real rc[3] = {sums.centroid[0][i], sums.centroid[1][i], sums.centroid[2][i]};
@@ -430,6 +516,8 @@ bool hold_contact(CondensedSums& sums, Index c, const ContactFrame& f, const Rea
   s.room_n = room_n;
   s.room_s = room_s;
   s.open_margin = open_margin;  // the last step's du_cn and dD row n: zero at the entry
+  s.slope_n = slope_n;
+  s.shrink_s = shrink_s;
   // The entry's kinematics with the kernel's arithmetic (not f's), so that the change is exactly
   // zero at the entry's poses.
   kinematics_at_poses(sums, i, f.n, f.t1, pose, a, b, s.disp0, s.disp);

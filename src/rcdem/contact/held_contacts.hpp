@@ -19,8 +19,9 @@
 //   energy     sum E_J = E0 - (Phi0 . du_c + sum_ik dD_ik Q_ki)
 //                          + (K du_c^T L du_c + sum_k L_k (dD J dD^T)_kk) / 2,
 // E_J = phi_J^T L^-1 phi_J / (2 kn_J), the spring energy (SPEC 11). Phi0, Q, E0, the entry's
-// disp0, disp, the two rooms and the broken points' margin and last step (5 numbers, below) are 32
-// numbers per held contact, against 6 points' 768 bytes.
+// disp0, disp, the two rooms, the broken points' margin and last step (5 numbers, below), the
+// normal slope and the shear room's shrink (below) are 34 numbers per held contact, against 6
+// points' 768 bytes.
 //
 // Whether the points stay linear is decided by a bound, row by row of dD: with rho_J = r_J - r_c,
 // |du_Jn - du_cn| <= |dD_n| max|rho| = e_n (dD_n: dD's row along n) and |du_Js - du_cs| <=
@@ -38,6 +39,17 @@
 // its points that carry force (broken_point_sums), while each step's change of du_cn less
 // |change of dD_n| max|rho| is at least open_margin (a part in 1e9 of their opening, for rounding
 // in the law's un - un_old); that needs the last held step's du_cn and dD_n.
+// A point softening along its normal envelope (0 < D < 1 from its largest opening alone, fn =
+// (1 - D) fn_max at un = un_max, its shear below the cap) follows, while each step opens it
+// further, fn = fn_max (u_nu - un) / (u_nu - u_n0): a line of slope -beta kn, beta = u_n0 /
+// (u_nu - u_n0), the same for every point of a contact (u_n0 = sigma_n,t / (E_bar / L)). So a
+// contact whose unbroken points all soften is held with L = diag(-beta, alpha, alpha) (slope_n =
+// -beta) and the energy's normal row's work and quadratic term scaled by -beta and beta^2; each
+// step its points dissipate sum (fn_J(t - 1) + fn_J(t)) / 2 (1 + beta) delta_J
+// (softening_dissipation in the kernel, the law's trapezoid); its rooms are to u_nu (D = 1)
+// along n and, across, to the shear cap, which shrinks by shrink_s = (c_max / ks) / (u_nu - u_n0)
+// per unit of opening; and it stays held only while every point keeps opening (the broken
+// points' test below). Points inside the envelope and softening ones are not held together.
 // A held contact that leaves its room first has its points brought up to the last step (one
 // elastic update from the entry's histories: what the point loop would have stored, to rounding,
 // except a maximum below its elastic limit, which nothing reads and which a held step does not
@@ -75,6 +87,11 @@ struct HeldSums {
   Real open_margin;
   Real last_du_n;
   Real last_dd_n[3];
+  // The points' normal slope in units of their kn: 1 for points inside their envelope, -beta for
+  // points softening along it (below); and how much of the shear room a unit of normal opening
+  // takes (gamma: 0 inside the envelope).
+  Real slope_n;
+  Real shrink_s;
 };
 
 // The checkpoint's columns of HeldSums (core/archive.hpp), in its order.
@@ -90,6 +107,8 @@ void archive_fields(Record& r, S& h) {
   r.put(named("open_margin", "m", h.open_margin));
   r.put(named("last_du_n", "m", h.last_du_n));
   for (auto& v : h.last_dd_n) r.put(named("last_dd_n", "1", v));
+  r.put(named("slope_n", "1", h.slope_n));
+  r.put(named("shrink_s", "1", h.shrink_s));
 }
 
 // The held contacts of a network: a flag per contact and, per block of kBlock contacts (the
@@ -139,7 +158,8 @@ struct HeldEntryRow {
 // condensation's K, centroid, J and radius of c become those of its points that carry force
 // (broken_point_sums).
 bool hold_contact(CondensedSums& sums, Index c, const ContactFrame& f, const Real* pose, Index a,
-                  Index b, const LocalPointRecord* points, Index begin, Index end, HeldSums& h);
+                  Index b, const LocalPointRecord* points, Index begin, Index end, Real u_nu,
+                  HeldSums& h);
 
 // Contact c's K, centroid, J and radius in `sums` (elastic_condensation.hpp) over its points
 // [begin, end) that are not broken (`broken[m - begin]`), the radius over all of them, A's centre
@@ -172,6 +192,7 @@ struct HeldOutputs {
   Real n[3][HeldContacts::kBlock], t1[3][HeldContacts::kBlock];
   Real energy[HeldContacts::kBlock];
   Real du_n[HeldContacts::kBlock], dd_n[3][HeldContacts::kBlock];  // HeldSums::last_*
+  Real dissipated[HeldContacts::kBlock];  // by damage this step (softening points; else 0)
   std::int64_t kept[HeldContacts::kBlock];
 };
 

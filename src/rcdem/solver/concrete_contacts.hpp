@@ -52,17 +52,18 @@ class ConcreteContacts final : public StepPart {
 
   // The checkpoint's "contacts" (core/archive.hpp). Restored: which contacts are intact follows
   // from the points' damage, and none is condensed (their histories were complete when saved);
-  // the held ones (format 7 on) stay held, their points current (held_contacts.hpp). Format 6's
-  // held rows (before contacts with broken points were held) are not read: such a file restarts
-  // with nothing held, as formats 4 and 5 do (its points were caught up when written).
+  // the held ones (format 8 on) stay held, their points current (held_contacts.hpp). Formats 6's
+  // and 7's held rows (before contacts with broken, then softening points were held) are not read:
+  // such a file restarts with nothing held, as formats 4 and 5 do (its points were caught up when
+  // written).
   template <class Archive, class Self>
   static void serialize(Archive& ar, Self& s) {
     ContactState::serialize(ar, "contacts", s.contacts_);
     std::vector<HeldRow> held;
     std::vector<HeldEntryRow> entry;
-    bool with_held = true;  // format 7 on (above)
+    bool with_held = true;  // format 8 on (above)
     if constexpr (Archive::loading)
-      with_held = ar.version() >= 7;
+      with_held = ar.version() >= 8;
     else
       s.held_rows(held, entry);
     if (with_held) {

@@ -42,7 +42,9 @@ struct BilinearSoftening {
   // step's displacement with slopes kn, ks from where it stands (unloading keeps kn): its damaged
   // contact may be held to its sums while that lasts (held_contacts.hpp, kHoldableLaw). So may
   // one whose broken points keep opening: such a point's force is kn min(0, un - M), M its largest
-  // opening since it broke, and its shear cap then 0 (update below, cap_shear).
+  // opening since it broke, and its shear cap then 0 (update below, cap_shear); and one whose
+  // points soften along the normal envelope while they keep opening: fn = (1 - D) fn_max is then
+  // linear in un, with slope -kn u_n0 / (u_nu - u_n0).
   static constexpr bool kHoldable = true;
 
   // Ultimate displacements of the softening triangles (S2); independent of the point's area.
