@@ -378,7 +378,7 @@ template <typename Law>
 
 // The visited contacts `visit[0, count)` of the block from `begin`, just evaluated in their frames
 // `frames[c - begin]`, that are damaged and have every point inside its room are held from the
-// next step.
+// next step (hold_contact; u_nu > 0: softening points too).
 [[gnu::noinline]] inline void hold_visited_contacts(const ContactInputs& in, const ContactState& cs,
                                                     ElasticCondensation& cond, const Index* visit,
                                                     Index count, const ContactFrame* frames,
@@ -481,7 +481,8 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
                            changed);
         if constexpr (kHoldableLaw<Law>)
           if (cond->held.enabled)
-            hold_visited_contacts(in, cs, *cond, visit, visits, frames, begin, law.u_nu());
+            hold_visited_contacts(in, cs, *cond, visit, visits, frames, begin,
+                                  cond->held.softening ? law.u_nu() : 0.0);
         if (energy) keep_point_energies(law, in.net, cs, visit, visits, energy);
         cs.block_transitions[static_cast<std::size_t>(begin / kBlock)] = changed;
         // Contacts evaluated from the condensation's sums dissipate exactly zero, so that kernel

@@ -452,7 +452,7 @@ bool point_kinds(const LocalPointRecord* points, Index begin, Index end, Real u_
     if (st.damage >= 1) {
       if (!broken_and_open(st)) return false;
       k = 'b';
-    } else if (st.damage > 0 && on_normal_envelope(points[m])) {
+    } else if (st.damage > 0 && u_nu > 0 && on_normal_envelope(points[m])) {
       k = 's';
     }
     if ((k == 'i' && softening) || (k == 's' && inside)) return false;

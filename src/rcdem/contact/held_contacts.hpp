@@ -43,8 +43,9 @@
 // (1 - D) fn_max at un = un_max, its shear below the cap) follows, while each step opens it
 // further, fn = fn_max (u_nu - un) / (u_nu - u_n0): a line of slope -beta kn, beta = u_n0 /
 // (u_nu - u_n0), the same for every point of a contact (u_n0 = sigma_n,t / (E_bar / L)). So a
-// contact whose unbroken points all soften is held with L = diag(-beta, alpha, alpha) (slope_n =
-// -beta) and the energy's normal row's work and quadratic term scaled by -beta and beta^2; each
+// contact whose unbroken points all soften can be held (solver.hold_softening_contacts, off by
+// default) with L = diag(-beta, alpha, alpha) (slope_n = -beta) and the energy's normal row's
+// work and quadratic term scaled by -beta and beta^2; each
 // step its points dissipate sum (fn_J(t - 1) + fn_J(t)) / 2 (1 + beta) delta_J
 // (softening_dissipation in the kernel, the law's trapezoid); its rooms are to u_nu (D = 1)
 // along n and, across, to the shear cap, which shrinks by shrink_s = (c_max / ks) / (u_nu - u_n0)
@@ -117,6 +118,7 @@ void archive_fields(Record& r, S& h) {
 struct HeldContacts {
   static constexpr Index kBlock = 128;
   bool enabled = false;                      // solver.hold_unloading_contacts
+  bool softening = false;                    // solver.hold_softening_contacts
   std::vector<std::uint8_t> held;            // per contact
   std::vector<std::vector<HeldSums>> block;  // per block, empty until one of its contacts is held
   // A read's catch-up (above): per contact, whether its points' histories at entry are in `entry`
@@ -154,9 +156,10 @@ struct HeldEntryRow {
 
 // Whether contact c, just evaluated through its points in the frame `f` at the poses `pose` (A = a,
 // B = b), is held from the next step: every point of it inside its room or broken and open (at its
-// largest opening: fn = 0, fs = 0); if so, h receives its sums, and with broken points the
-// condensation's K, centroid, J and radius of c become those of its points that carry force
-// (broken_point_sums).
+// largest opening: fn = 0, fs = 0), or, with u_nu > 0 (the law's ultimate opening; 0: not
+// allowed), every unbroken one softening along its normal envelope; if so, h receives its sums,
+// and with broken points the condensation's K, centroid, J and radius of c become those of its
+// points that carry force (broken_point_sums).
 bool hold_contact(CondensedSums& sums, Index c, const ContactFrame& f, const Real* pose, Index a,
                   Index b, const LocalPointRecord* points, Index begin, Index end, Real u_nu,
                   HeldSums& h);

@@ -21,6 +21,7 @@ ConcreteContacts::ConcreteContacts(const Scenario& sc, const ContactNetwork& net
   if (sc.solver.condense_elastic_contacts && condensable(law_)) {
     condensation_ = ElasticCondensation::build(net, bodies.position0);
     condensation_.held.enabled = sc.solver.hold_unloading_contacts;
+    condensation_.held.softening = sc.solver.hold_softening_contacts;
   }
 }
 
