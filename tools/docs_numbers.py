@@ -29,8 +29,7 @@ def counts(d):
     print(f"aggregate particles {p['aggregate']:,}; mortar particles {p['mortar']:,}; "
           f"steel interface spheres {p['steel']:,}; contacts {spec['contacts']:,}; "
           f"contacts per particle {spec['contacts_per_particle']:.2f}; "
-          f"local points per contact {spec['local_points_per_contact']:.2f}; "
-          f"rcdem {s['rcdem']['git_hash']}")
+          f"local points per contact {spec['local_points_per_contact']:.2f}")
 
 
 STIRRUPS = ["stirrup_l1", "stirrup_l2", "stirrup_l3", "stirrup_r1", "stirrup_r2", "stirrup_r3"]

@@ -208,7 +208,12 @@ do_job() {
   local start
   start=$(date +%s)
   echo "$(date -u '+%F %H:%M:%S') start $name" >> "$OUT/progress.log"
-  if "job_$name" "$dir" >> "$dir/log" 2>&1; then
+  # Not in an `if`: there bash ignores set -e inside the job, and a failed step would pass.
+  set +e
+  (set -e; "job_$name" "$dir") >> "$dir/log" 2>&1
+  local rc=$?
+  set -e
+  if [ $rc -eq 0 ]; then
     {
       echo "binary: $("$RCDEM" --version)"
       echo "machine: nproc $NPROC, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
