@@ -8,9 +8,18 @@
 # The figures themselves go into docs/ by hand from OUT, through the tools each doc names.
 #
 # usage: tools/regenerate_docs.sh [--list] [-j WORKERS] [JOB ...]
+#        tools/regenerate_docs.sh --save
 #   JOB         run only these (default: every job, in the order below: cheap ones first)
 #   -j WORKERS  jobs at a time, each of one thread (default: nproc)
 #   --list      the jobs, one a line, with what each regenerates
+#   --save      keep the finished runs of every study in OUT, one archive a run, in
+#               KEEP/JOB/STUDY/RUN.tar.xz (default KEEP docs/figures/regen; tools/study_archive.py
+#               pack-runs, with the study's own tables), and the done jobs' DONE files: to be
+#               committed. The whole set takes
+#               longer than a working session on 2 cores and a session may start on a fresh
+#               machine: a later call unpacks KEEP's runs into a job's studies that are not done,
+#               and each study runs only what is missing. KEEP/COMMIT names the binary; runs of
+#               another binary are neither used nor added to.
 #   RCDEM       the binary (default build/rcdem); OUT the directory (default results/regen).
 #               OUT/COMMIT holds the first binary's --version: another binary is refused, so that
 #               every figure comes from one commit (a new commit starts a new OUT).
@@ -18,6 +27,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 RCDEM=$(realpath "${RCDEM:-build/rcdem}")
 OUT=${OUT:-results/regen}
+KEEP=${KEEP:-docs/figures/regen}
 PY=/usr/bin/python3
 NPROC=$(nproc)   # before OMP_NUM_THREADS, which nproc follows
 export OMP_NUM_THREADS=1
@@ -232,10 +242,56 @@ worker() {
   for name in "$@"; do do_job "$name"; done
 }
 
+# The studies of OUT: OUT/JOB/STUDY holding a cases.csv.
+studies() { find "$OUT" -mindepth 3 -maxdepth 3 -name cases.csv -printf '%h\n' | sort; }
+
+save_runs() {
+  if [ -f "$KEEP/COMMIT" ] && [ "$(cat "$KEEP/COMMIT")" != "$version" ]; then
+    echo "regenerate_docs.sh: $KEEP keeps runs of '$(cat "$KEEP/COMMIT")', not of '$version':" \
+         "remove it first (git rm -r $KEEP)" >&2
+    exit 1
+  fi
+  mkdir -p "$KEEP"
+  echo "$version" > "$KEEP/COMMIT"
+  local study rel
+  for study in $(studies); do
+    rel=${study#"$OUT"/}
+    $PY tools/study_archive.py pack-runs "$study" "$KEEP/$rel"
+  done
+  for done_file in "$OUT"/*/DONE; do
+    [ -f "$done_file" ] || continue
+    rel=${done_file#"$OUT"/}
+    mkdir -p "$KEEP/${rel%/DONE}"
+    cp "$done_file" "$KEEP/$rel"
+  done
+}
+
+# The kept runs of the jobs not done here, each into its study (where it is not there yet).
+restore_runs() {
+  [ -f "$KEEP/COMMIT" ] || return 0
+  if [ "$(cat "$KEEP/COMMIT")" != "$version" ]; then
+    echo "regenerate_docs.sh: $KEEP keeps runs of '$(cat "$KEEP/COMMIT")', not used" >&2
+    return 0
+  fi
+  local runs rel done_file
+  for runs in $(find "$KEEP" -mindepth 2 -maxdepth 2 -type d | sort); do
+    rel=${runs#"$KEEP"/}
+    $PY tools/study_archive.py unpack-runs "$runs" "$OUT/$rel" >> "$OUT/progress.log"
+  done
+  # A job done in an earlier session stays done, with that session's record.
+  for done_file in "$KEEP"/*/DONE; do
+    [ -f "$done_file" ] || continue
+    rel=${done_file#"$KEEP"/}
+    [ -f "$OUT/$rel" ] || { mkdir -p "$OUT/${rel%/DONE}"; cp "$done_file" "$OUT/$rel"; }
+  done
+}
+
 workers=$NPROC
+save=0
 selected=()
 while [ $# -gt 0 ]; do
   case $1 in
+    --save) save=1; shift ;;
     --list)
       for j in "${JOBS[@]}"; do IFS='|' read -r n d w <<< "$j"; printf '%-18s %s (%s)\n' "$n" "$w" "$d"; done
       exit 0 ;;
@@ -256,6 +312,11 @@ if [ -f "$OUT/COMMIT" ] && [ "$(cat "$OUT/COMMIT")" != "$version" ]; then
   exit 1
 fi
 echo "$version" > "$OUT/COMMIT"
+if [ $save = 1 ]; then
+  save_runs
+  exit 0
+fi
+restore_runs
 # Claims of an interrupted call (its process gone); a call still running keeps its own.
 for claim in "$OUT"/*.claim; do
   [ -d "$claim" ] || continue

@@ -3,6 +3,8 @@
 
 usage: study_archive.py pack STUDY_DIR ARCHIVE.tar.xz
        study_archive.py unpack ARCHIVE.tar.xz STUDY_DIR
+       study_archive.py pack-runs STUDY_DIR RUNS_DIR
+       study_archive.py unpack-runs RUNS_DIR STUDY_DIR
 
 A full-size study takes longer than one working session on a small machine; its runs are
 bit-reproducible with the same binary, so a study may be run in parts, and the finished part kept
@@ -13,10 +15,19 @@ hundreds of megabytes with its snapshots (so Figures 8 and 9, drawn from the las
 not remade from an archive). The archive's bytes depend only on those files (sorted, no owner or
 time stamps). `unpack` writes into a study directory that does not exist or is empty, never over
 earlier results; `rcdem study -o STUDY_DIR` then counts those runs as finished and runs the rest.
+
+`pack-runs` writes one archive a finished run, RUNS_DIR/<run>.tar.xz (the same run files, under
+cases/<run>/), for each finished run that has none yet, and copies the study's cases.csv,
+peak_loads.csv and study.json beside them: a study kept in parts over several sessions adds a
+file a run and never rewrites one (tools/regenerate_docs.sh --save). `unpack-runs` puts each
+archived run into STUDY_DIR/cases/<run> where that run is not there yet (never over a run), and
+the study's three files where they are missing; `rcdem study -o STUDY_DIR` then counts those runs
+as finished, runs the rest and writes its tables again.
 """
 import csv
 import io
 import os
+import shutil
 import sys
 import tarfile
 
@@ -58,13 +69,16 @@ def pack(study, archive):
     print(f"{archive}: {len(runs)} finished runs of {study}, {os.path.getsize(archive):,} bytes")
 
 
-def safe_members(tar, archive):
+def safe_members(tar, archive, run=None):
+    """The members, each a study file or a run's file (of `run` only, if given), or exit."""
     for m in tar.getmembers():
         parts = m.name.split("/")
         if not m.isfile() or m.name.startswith("/") or ".." in parts or not (
-                (len(parts) == 1 and parts[0] in STUDY_FILES)
-                or (len(parts) == 3 and parts[0] == "cases" and parts[2] in RUN_FILES)):
-            sys.exit(f"{archive}: {m.name!r} is not a file of a study archive")
+                (run is None and len(parts) == 1 and parts[0] in STUDY_FILES)
+                or (len(parts) == 3 and parts[0] == "cases" and parts[2] in RUN_FILES
+                    and parts[1] == (run or parts[1]))):
+            sys.exit(f"{archive}: {m.name!r} is not a file of "
+                     + ("a study archive" if run is None else f"run {run}'s archive"))
         yield m
 
 
@@ -86,7 +100,57 @@ def unpack(archive, study):
     print(f"{study}: {len(finished_runs(study))} finished runs from {archive}")
 
 
+def pack_runs(study, runs_dir):
+    os.makedirs(runs_dir, exist_ok=True)
+    added = 0
+    for run in sorted(finished_runs(study)):
+        archive = os.path.join(runs_dir, run + ".tar.xz")
+        if os.path.exists(archive):
+            continue
+        if not os.path.exists(os.path.join(study, "cases", run, "summary.json")):
+            sys.exit(f"{study}: cases.csv says {run} finished but it has no summary.json")
+        with tarfile.open(archive + ".part", "w:xz", format=tarfile.PAX_FORMAT) as tar:
+            for f in RUN_FILES:
+                path = os.path.join(study, "cases", run, f)
+                if os.path.exists(path):
+                    add(tar, path, f"cases/{run}/{f}")
+        os.replace(archive + ".part", archive)
+        added += 1
+    for f in STUDY_FILES:  # the study's own tables, as they are now (small; rewritten each time)
+        if os.path.exists(os.path.join(study, f)):
+            shutil.copyfile(os.path.join(study, f), os.path.join(runs_dir, f))
+    print(f"{runs_dir}: {added} runs of {study} added")
+
+
+def unpack_runs(runs_dir, study):
+    added = 0
+    for name in sorted(os.listdir(runs_dir)):
+        if not name.endswith(".tar.xz"):
+            continue
+        run, archive = name[:-len(".tar.xz")], os.path.join(runs_dir, name)
+        target = os.path.join(study, "cases", run)
+        if os.path.exists(target):
+            continue
+        try:
+            with tarfile.open(archive, "r:xz") as tar:
+                members = list(safe_members(tar, archive, run))
+                os.makedirs(target + ".part", exist_ok=True)
+                for m in members:
+                    with open(os.path.join(target + ".part", m.name.split("/")[2]), "wb") as f:
+                        f.write(tar.extractfile(m).read())
+        except (tarfile.TarError, OSError, EOFError) as e:
+            sys.exit(f"{archive}: cannot be read as a run's archive ({e})")
+        os.replace(target + ".part", target)
+        added += 1
+    for f in STUDY_FILES:  # so that `rcdem study -o STUDY_DIR` knows the directory for a study's
+        if os.path.exists(os.path.join(runs_dir, f)) and not os.path.exists(os.path.join(study, f)):
+            shutil.copyfile(os.path.join(runs_dir, f), os.path.join(study, f))
+    print(f"{study}: {added} runs from {runs_dir}")
+
+
+COMMANDS = {"pack": pack, "unpack": unpack, "pack-runs": pack_runs, "unpack-runs": unpack_runs}
+
 if __name__ == "__main__":
-    if len(sys.argv) != 4 or sys.argv[1] not in ("pack", "unpack"):
+    if len(sys.argv) != 4 or sys.argv[1] not in COMMANDS:
         sys.exit(__doc__)
-    (pack if sys.argv[1] == "pack" else unpack)(sys.argv[2], sys.argv[3])
+    COMMANDS[sys.argv[1]](sys.argv[2], sys.argv[3])

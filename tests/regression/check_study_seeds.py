@@ -15,6 +15,7 @@ import csv
 import filecmp
 import json
 import os
+import shutil
 import statistics
 import subprocess
 import sys
@@ -175,6 +176,36 @@ with tempfile.TemporaryDirectory() as tmp:
     check(again[0].returncode != 0 and "not an empty directory" in again[0].stderr
           and again[1].returncode != 0 and "never overwritten" in again[1].stderr,
           "an archive is not unpacked over a study, nor packed over an archive")
+    # One archive a run (pack-runs, unpack-runs: a study kept in parts over fresh machines).
+    runs_dir, parts = os.path.join(tmp, "runs"), os.path.join(tmp, "parts")
+    packed = [subprocess.run(tool + ["pack-runs", out, runs_dir], capture_output=True, text=True,
+                             timeout=600) for _ in range(2)]
+    kept = sorted(os.listdir(runs_dir)) if os.path.isdir(runs_dir) else []
+    check([p.returncode for p in packed] == [0, 0] and "3 runs" in packed[0].stdout
+          and "0 runs" in packed[1].stdout
+          and kept == [f"AN0_seed{s}.tar.xz" for s in (1, 2, 3)]
+          + ["cases.csv", "peak_loads.csv", "study.json"],
+          f"pack-runs writes one archive a finished run, and none again, and the study's own "
+          f"tables ({kept})")
+    r = subprocess.run(tool + ["unpack-runs", runs_dir, parts], capture_output=True, text=True,
+                       timeout=600)
+    cont = subprocess.run(cmd[:-3] + [parts, "--seeds", "1,2,3", *FAST], capture_output=True,
+                          text=True, timeout=600, cwd=source)
+    same = cont.returncode == 0 and filecmp.cmp(
+        os.path.join(parts, "peak_loads.csv"), os.path.join(out, "peak_loads.csv"), shallow=False)
+    check(r.returncode == 0 and cont.stderr.count("finished earlier") == 3 and same,
+          "unpack-runs gives a study its 3 runs: it runs none and writes the same peak_loads.csv "
+          f"({r.returncode}, {cont.returncode}: {cont.stderr.strip()[-300:]})")
+    again = subprocess.run(tool + ["unpack-runs", runs_dir, parts], capture_output=True,
+                           text=True, timeout=60)
+    check(again.returncode == 0 and "0 runs" in again.stdout, "unpack-runs never writes over a run")
+    bad_runs = os.path.join(tmp, "bad_runs")
+    os.makedirs(bad_runs)
+    shutil.copy(archive, os.path.join(bad_runs, "AN0_seed1.tar.xz"))  # a whole study's archive
+    bad = subprocess.run(tool + ["unpack-runs", bad_runs, os.path.join(tmp, "bad_parts")],
+                         capture_output=True, text=True, timeout=60)
+    check(bad.returncode != 0 and "is not a file of run AN0_seed1's archive" in bad.stderr,
+          "a run's archive holding other files is refused, naming the file")
     # Refusals.
     bad = subprocess.run(cmd + ["--seeds", "2,2"], capture_output=True, text=True, timeout=60,
                          cwd=source)
