@@ -11,9 +11,9 @@
 namespace rcdem::config {
 
 // A run's peak memory per body (particle or interface sphere), measured: the full AN4 NL-B beam
-// (26,478 particles, 171,668 contacts) peaks at 449 MB resident after 20 steps, 17 kB each
-// (bench/RESULTS.md, "Reliability").
-inline constexpr double kBytesPerParticle = 17.0e3;
+// (26,478 bodies, 171,668 contacts) peaks at 478 MB resident after 20 steps, 18.1 kB each
+// (docs/model.md, "Model size": tools/regenerate_docs.sh model_checks).
+inline constexpr double kBytesPerParticle = 18.1e3;
 // More plates or bars than any test needs is a typo or a generated file gone wrong; the bar
 // checks are pairwise.
 inline constexpr int kMaxPlates = 64;
