@@ -47,6 +47,7 @@ JOBS=(
   "quick_study|docs/case-study.md|the quick study, 13 cases on packings 1-3"
   "size_quick_plain|docs/size-series.md|the plain beams 100/200/400 mm, quick, packings 1-3, and packing 1 at half rate"
   "quick320|docs/calibration.md|the quick resolution's check on the 320 mm cube, packings 1 and 2"
+  "partition|docs/parallel.md|the partitions of the 400 mm and AN4 beams, 1 to 1,024 parts"
   "size_transition|docs/size-series.md|the transition at 100 and 200 mm, quick, packings 1-3"
   "size_full_plain|docs/size-series.md|the plain beams 100 and 200 mm at full resolution, packings 1-3"
   "study_seed1|docs/case-study.md|the full-size study, every case on packing 1"
@@ -154,6 +155,23 @@ job_quick320() {
   calibrate "$1/seed1" examples/uniaxial/cube320_quick.toml
   calibrate "$1/seed2" examples/uniaxial/cube320_quick.toml --set generation.seed=2 --peak-only
   $PY tools/calibration_tables.py results "$1"/seed{1,2} > "$1/table.md"
+}
+
+# bench/partition_model of the same build (RCDEM_BUILD_BENCH=ON beside the binary), with
+# docs/parallel.md's seconds a point (measured, not regenerated: they are times).
+job_partition() {
+  local model ranks=1,2,4,8,16,32,64,128,256,512,1024
+  model=$(dirname "$RCDEM")/bench/rcdem_partition_model
+  [ -x "$model" ] || { echo "partition needs $model: build the binary's tree with" \
+                            "-DRCDEM_BUILD_BENCH=ON (target rcdem_partition_model)" >&2; return 1; }
+  local h400=examples/size_series/study/h400_rho1.05.toml
+  "$model" $h400 "$1/h400_intact.csv" $ranks --seconds-per-point 1.24e-8
+  "$model" $h400 "$1/h400_cracked.csv" $ranks --seconds-per-point 3.4e-8
+  "$model" examples/three_point_bending/study/AN4_NL-B.toml "$1/AN4_intact.csv" \
+    1,2,3,4,8,16,32,64 --seconds-per-point 1.24e-8
+  $PY tools/partition_report.py "$1/figures" "400 mm beam, intact=$1/h400_intact.csv" \
+    "400 mm beam, cracked=$1/h400_cracked.csv" "AN4 beam, intact=$1/AN4_intact.csv" \
+    --steps "400 mm beam, intact=65000" --steps "400 mm beam, cracked=930000" --ranks 64
 }
 
 job_quick_rate() {  # every quick case loads at 0.0125 m/s (tools/make_tpb_scenarios.py)
