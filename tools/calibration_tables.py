@@ -5,6 +5,8 @@ regenerated rather than edited by hand.
 usage:
   calibration_tables.py results DIR [DIR ...]   one row per directory: cube, seed, E, nu, strengths
   calibration_tables.py search DIR              the iterations of a search (--target)
+  calibration_tables.py details DIR [DIR ...]   per directory: strains at the peaks, nu at 40%
+                                                of the compressive peak, energy balances, steps
 
 Every row names the rcdem build that ran it (summary.json of its compression test).
 """
@@ -51,6 +53,22 @@ def results(dirs):
               f"{build.get('git_hash', '?')} |")
 
 
+def details(dirs):
+    for d in dirs:
+        c = load(d)
+        m = c["measured"]
+        runs = [json.load(open(os.path.join(os.path.dirname(test_dir(d)), t, "summary.json")))
+                for t in ("compression", "tension")]
+        print(f"{1e3 * c['cube_size_m']:.0f} mm cube, seed {c['seed']}: strain at the peak "
+              f"{1e3 * m['strain_at_peak_compression']:.2f}‰ (compression), "
+              f"{1e3 * m['strain_at_peak_tension']:.3f}‰ (tension); ν at 40% of the "
+              f"compressive peak {m['nu_at_40_percent_compression']:.2f}; energy balance "
+              f"{100 * m['energy_balance_error_compression']:.2g}% (compression), "
+              f"{100 * m['energy_balance_error_tension']:.2g}% (tension); "
+              f"{runs[0]['steps']:,} and {runs[1]['steps']:,} steps, "
+              f"{runs[0]['seconds']:.0f} and {runs[1]['seconds']:.0f} s")
+
+
 def search(d):
     c = load(d)
     print(f"Search on the {1e3 * c['cube_size_m']:.0f} mm cube, seed {c['seed']}, tolerance "
@@ -69,9 +87,9 @@ def search(d):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) < 3 or sys.argv[1] not in ("results", "search"):
+    if len(sys.argv) < 3 or sys.argv[1] not in ("results", "details", "search"):
         sys.exit(__doc__)
-    if sys.argv[1] == "results":
-        results(sys.argv[2:])
-    else:
+    if sys.argv[1] == "search":
         search(sys.argv[2])
+    else:
+        (results if sys.argv[1] == "results" else details)(sys.argv[2:])

@@ -109,6 +109,7 @@ job_cal160() {
   calibrate "$1/seed1" examples/uniaxial/cube160_calibrated.toml
   calibrate "$1/seed2" examples/uniaxial/cube160_calibrated.toml --set generation.seed=2 --peak-only
   $PY tools/calibration_tables.py results "$1"/seed{1,2} > "$1/table.md"
+  $PY tools/calibration_tables.py details "$1"/seed{1,2} > "$1/details.txt"
 }
 
 job_cal160_half() {
@@ -216,6 +217,12 @@ job_study_seed1() {
 job_study_more() {
   study "$1/more" three_point_bending --seeds 2,3 \
     --cases AN0,AN1_NL-B,AN2_EL,AN2_NL-A,AN2_NL-B,AN3_NL-B,AN4_EL,AN4_NL-A,AN4_NL-B
+}
+
+# One report over both parts of the full-size study (docs/case-study.md), made when both are done;
+# runs kept from earlier sessions bring their Figures 8 and 9 (study_archive.py pack-runs).
+report_study() {
+  $PY tools/study_report.py -o "$OUT/study_report" "$OUT/study_seed1/seed1" "$OUT/study_more/more"
 }
 
 job_size_h400() {
@@ -347,5 +354,11 @@ if [ -f "$OUT/size_transition/DONE" ] && [ -f "$OUT/size_quick_plain/DONE" ] &&
    [ ! -f "$OUT/size_transition/report/size_effect.json" ]; then
   report_size_transition "$OUT/size_transition" >> "$OUT/size_transition/log" 2>&1 ||
     echo "$(date -u '+%F %H:%M:%S') FAILED the transition's report" >> "$OUT/progress.log"
+fi
+if [ -f "$OUT/study_seed1/DONE" ] && [ -f "$OUT/study_more/DONE" ] &&
+   [ ! -f "$OUT/study_report/report.json" ]; then
+  mkdir -p "$OUT/study_report"
+  report_study >> "$OUT/study_report/log" 2>&1 ||
+    echo "$(date -u '+%F %H:%M:%S') FAILED the full-size study's report" >> "$OUT/progress.log"
 fi
 grep -h "FAILED" "$OUT/progress.log" 2> /dev/null | tail -5 || true

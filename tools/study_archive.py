@@ -19,13 +19,17 @@ earlier results; `rcdem study -o STUDY_DIR` then counts those runs as finished a
 `pack-runs` writes one archive a finished run, RUNS_DIR/<run>.tar.xz (the same run files, under
 cases/<run>/), for each finished run that has none yet, and copies the study's cases.csv,
 peak_loads.csv and study.json beside them: a study kept in parts over several sessions adds a
-file a run and never rewrites one (tools/regenerate_docs.sh --save). `unpack-runs` puts each
+file a run and never rewrites one (tools/regenerate_docs.sh --save). Of a three-point bending
+study's first packing's NL-B runs and AN0, whose Figures 8 and 9 a report publishes, it keeps the
+two figures drawn from the snapshots (figure8.png, figure9.png in the run's archive), which the
+report then uses for a run without snapshots. `unpack-runs` puts each
 archived run into STUDY_DIR/cases/<run> where that run is not there yet (never over a run), and
 the study's three files where they are missing; `rcdem study -o STUDY_DIR` then counts those runs
 as finished, runs the rest and writes its tables again.
 """
 import csv
 import io
+import json
 import os
 import shutil
 import sys
@@ -33,7 +37,11 @@ import tarfile
 
 STUDY_FILES = ("cases.csv", "peak_loads.csv", "study.json")
 RUN_FILES = ("summary.json", "history.csv", "broken_points.csv", "manifest.json",
-             "scenario.toml", "run.log")
+             "scenario.toml", "run.log", "figure8.png", "figure9.png")
+# The runs of a three-point bending study whose Figures 8 and 9 a report publishes (the first
+# packing's NL-B runs and AN0: tools/publish_study.py): pack-runs draws them from the snapshots,
+# which it does not keep (tools/study_report.py draw_run_figures).
+FIGURE_INTERFACES = ("NL-B", "none")
 
 
 def finished_runs(study):
@@ -100,15 +108,30 @@ def unpack(archive, study):
     print(f"{study}: {len(finished_runs(study))} finished runs from {archive}")
 
 
+def figure_runs(study):
+    """The finished runs of a three-point bending study whose Figures 8 and 9 are published."""
+    label = json.load(open(os.path.join(study, "study.json"))).get("study", "")
+    if not label.startswith("three_point_bending"):
+        return set()
+    rows = csv.DictReader(open(os.path.join(study, "cases.csv")))
+    return {r.get("directory") or r["case"] for r in rows
+            if r["status"] == "finished" and r["interface"] in FIGURE_INTERFACES
+            and r.get("seed", "1") in ("", "1")}
+
+
 def pack_runs(study, runs_dir):
     os.makedirs(runs_dir, exist_ok=True)
     added = 0
+    figures = figure_runs(study)
     for run in sorted(finished_runs(study)):
         archive = os.path.join(runs_dir, run + ".tar.xz")
         if os.path.exists(archive):
             continue
         if not os.path.exists(os.path.join(study, "cases", run, "summary.json")):
             sys.exit(f"{study}: cases.csv says {run} finished but it has no summary.json")
+        if run in figures:
+            import study_report  # matplotlib and meshio: only where a figure is drawn
+            study_report.draw_run_figures(run, os.path.join(study, "cases", run))
         with tarfile.open(archive + ".part", "w:xz", format=tarfile.PAX_FORMAT) as tar:
             for f in RUN_FILES:
                 path = os.path.join(study, "cases", run, f)

@@ -28,7 +28,9 @@ import csv
 import json
 import math
 import os
+import shutil
 import sys
+import tempfile
 import xml.etree.ElementTree as ET
 
 import matplotlib
@@ -216,6 +218,31 @@ def beam_outline(ax):
     ax.add_patch(plt.Rectangle(((LENGTH / 2 - 0.01) * 1e3, H * 1e3), 20, 4, color="grey"))
 
 
+def kept_figure(case, case_dir, out, number):
+    """A run kept without its snapshots (tools/study_archive.py pack-runs) keeps its Figure 8 and
+    9 as drawn from them, figure8.png and figure9.png: copied as the study's figure."""
+    kept = os.path.join(case_dir, f"figure{number}.png")
+    if not os.path.exists(kept):
+        return None
+    path = os.path.join(out, f"figure{number}_{case}.png")
+    shutil.copyfile(kept, path)
+    return path
+
+
+def draw_run_figures(case, case_dir):
+    """Figures 8 and 9 of one run, into its own directory as figure8.png and figure9.png, from its
+    last snapshots (none where it has none). Returns the files written."""
+    written = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for number, draw, series in ((9, figure9, "facets"), (8, figure8, "particles")):
+            if last_snapshot(case_dir, series)[1] is None:
+                continue
+            target = os.path.join(case_dir, f"figure{number}.png")
+            shutil.move(draw(case, case_dir, tmp), target)
+            written.append(target)
+    return written
+
+
 def figure9(case, case_dir, out):
     """Damaged facets near the side face y = 0 (within one aggregate size), seen along y."""
     import meshio
@@ -223,7 +250,7 @@ def figure9(case, case_dir, out):
 
     _, last = last_snapshot(case_dir, "facets")
     if last is None:
-        return None
+        return kept_figure(case, case_dir, out, 9)
     m = meshio.read(last)
     polys, dmg = [], []
     for block, damage in zip(m.cells, m.cell_data["damage"]):
@@ -262,7 +289,7 @@ def figure8(case, case_dir, out, scale=20.0):
 
     _, last = last_snapshot(case_dir, "particles")
     if last is None:
-        return None
+        return kept_figure(case, case_dir, out, 8)
     m = meshio.read(last)
     u = m.point_data["displacement"]
     x0 = m.points - u

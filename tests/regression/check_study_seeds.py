@@ -196,6 +196,11 @@ with tempfile.TemporaryDirectory() as tmp:
     check(r.returncode == 0 and cont.stderr.count("finished earlier") == 3 and same,
           "unpack-runs gives a study its 3 runs: it runs none and writes the same peak_loads.csv "
           f"({r.returncode}, {cont.returncode}: {cont.stderr.strip()[-300:]})")
+    kept = [os.path.exists(os.path.join(parts, f"figure{n}_AN0_seed{s}.png"))
+            for s in (1, 2) for n in (8, 9)]
+    check(kept == [True, True, False, False],
+          f"the runs kept without snapshots: packing 1's Figures 8 and 9 kept, drawn at pack-runs, "
+          f"and the report over them uses them; none for packing 2 ({kept})")
     again = subprocess.run(tool + ["unpack-runs", runs_dir, parts], capture_output=True,
                            text=True, timeout=60)
     check(again.returncode == 0 and "0 runs" in again.stdout, "unpack-runs never writes over a run")
