@@ -43,6 +43,7 @@ JOBS=(
   "continuum_k0|docs/case-study.md|the 3D elastic continuum's K0 of the AN0 beam, with the elastic pair"
   "generate_an0|docs/model.md, docs/outputs.md|the full-size AN0 specimen's counts; meshio's blocks of its facets"
   "model_checks|docs/model.md|the four-point, cyclic and stirrup examples, a refused porosity, AN4's memory"
+  "verification|docs/model.md|the bent bars against beam theory (the same build's verification tests)"
   "quick_rate|docs/case-study.md|the quick set-up's halving test: AN0, AN1/AN2/AN4 NL-B at 0.0125 and 0.00625 m/s"
   "quick_study|docs/case-study.md|the quick study, 13 cases on packings 1-3"
   "size_quick_plain|docs/size-series.md|the plain beams 100/200/400 mm, quick, packings 1-3, and packing 1 at half rate"
@@ -150,6 +151,17 @@ job_model_checks() {
   fi
   /usr/bin/time -v "$RCDEM" -q run examples/three_point_bending/study/AN4_NL-B.toml --threads 1 \
     --set stop.steps=20 -o "$1/an4_memory" --force 2> "$1/an4_memory.txt"
+}
+
+# The verification tests of the same build (RCDEM_BUILD_TESTS=ON beside the binary) print the
+# numbers docs/model.md quotes.
+job_verification() {
+  local tests
+  tests=$(dirname "$RCDEM")/tests/rcdem_verification_tests
+  [ -x "$tests" ] || { echo "verification needs $tests: build the binary's tree with" \
+                            "-DRCDEM_BUILD_TESTS=ON (target rcdem_verification_tests)" >&2; return 1; }
+  "$tests" --gtest_filter='BentBar.*' > "$1/bent_bar.txt"
+  grep -E "^(L bar|ring):" "$1/bent_bar.txt"
 }
 
 job_quick320() {
