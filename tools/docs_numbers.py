@@ -5,6 +5,7 @@ are regenerated rather than edited by hand (tools/regenerate_docs.sh runs the ru
 usage:
   docs_numbers.py counts GENERATE_DIR    particles, contacts and local points of a specimen
   docs_numbers.py stirrups RUN_DIR       examples/stirrups/beam.toml: stirrup and tie forces
+  docs_numbers.py probe RUN_DIR          a short run's specimen, time step, set-up and step times
 """
 import csv
 import json
@@ -54,8 +55,19 @@ def stirrups(d):
           f"rcdem {s['rcdem']['git_hash']}")
 
 
+def probe(d):
+    s = summary(d)
+    spec, p = s["specimen"], s["specimen"]["particles"]
+    print(f"particles {p['total']:,} ({p['aggregate']:,} aggregate, {p['mortar']:,} mortar, "
+          f"{p['steel']:,} interface spheres of {spec['bars']} bars), {spec['cylinders']:,} "
+          f"cylinders; contacts {spec['contacts']:,}; local points {spec['local_points']:,}")
+    print(f"time step {s['time_step_s']:.3g} s; {s['steps']:,} steps in {s['loop_seconds']:.1f} s "
+          f"({s['steps_per_second']:.2f} steps/s, up to {s['threads'].get('max', '?')} threads); set-up "
+          f"{s['seconds'] - s['loop_seconds']:.0f} s; rcdem {s['rcdem']['git_hash']}")
+
+
 def main(argv):
-    commands = {"counts": counts, "stirrups": stirrups}
+    commands = {"counts": counts, "stirrups": stirrups, "probe": probe}
     if len(argv) != 2 or argv[0] not in commands:
         sys.exit(__doc__)
     commands[argv[0]](argv[1])

@@ -10,7 +10,9 @@
 # usage: tools/regenerate_docs.sh [--list] [-j WORKERS] [JOB ...]
 #        tools/regenerate_docs.sh --save
 #   JOB         run only these (default: every job, in the order below: cheap ones first)
-#   -j WORKERS  jobs at a time, each of one thread (default: nproc)
+#   -j WORKERS  jobs at a time (default: nproc); a job's `rcdem run`s take one thread, a study's
+#               runs the study's threads (nproc for -j 1; their thread tuner gives way to the
+#               other jobs: `rcdem study` has no --threads). Threads do not change the bits.
 #   --list      the jobs, one a line, with what each regenerates
 #   --save      keep the finished runs of every study in OUT, one archive a run, in
 #               KEEP/JOB/STUDY/RUN.tar.xz (default KEEP docs/figures/regen; tools/study_archive.py
@@ -49,6 +51,7 @@ JOBS=(
   "size_quick_plain|docs/size-series.md|the plain beams 100/200/400 mm, quick, packings 1-3, and packing 1 at half rate"
   "quick320|docs/calibration.md|the quick resolution's check on the 320 mm cube, packings 1 and 2"
   "partition|docs/parallel.md|the partitions of the 400 mm and AN4 beams, 1 to 1,024 parts"
+  "h400_probe|docs/size-series.md|the 400 mm reinforced beam at full resolution: 300 steps, its size and memory"
   "size_transition|docs/size-series.md|the transition at 100 and 200 mm, quick, packings 1-3"
   "size_full_plain|docs/size-series.md|the plain beams 100 and 200 mm at full resolution, packings 1-3"
   "study_seed1|docs/case-study.md|the full-size study, every case on packing 1"
@@ -185,6 +188,13 @@ job_partition() {
   $PY tools/partition_report.py "$1/figures" "400 mm beam, intact=$1/h400_intact.csv" \
     "400 mm beam, cracked=$1/h400_cracked.csv" "AN4 beam, intact=$1/AN4_intact.csv" \
     --steps "400 mm beam, intact=65000" --steps "400 mm beam, cracked=930000" --ranks 64
+}
+
+job_h400_probe() {
+  /usr/bin/time -v "$RCDEM" -q run examples/size_series/study/h400_rho1.05.toml --threads 1 \
+    --set stop.steps=300 --set output.snapshots=0 -o "$1/probe" --force 2> "$1/time.txt"
+  grep "Maximum resident" "$1/time.txt"
+  $PY tools/docs_numbers.py probe "$1/probe" | tee "$1/probe.txt"
 }
 
 job_quick_rate() {  # every quick case loads at 0.0125 m/s (tools/make_tpb_scenarios.py)
