@@ -333,54 +333,60 @@ restore_runs() {
   done
 }
 
-workers=$NPROC
-save=0
-selected=()
-while [ $# -gt 0 ]; do
-  case $1 in
-    --save) save=1; shift ;;
-    --list)
-      for j in "${JOBS[@]}"; do IFS='|' read -r n d w <<< "$j"; printf '%-18s %s (%s)\n' "$n" "$w" "$d"; done
-      exit 0 ;;
-    -j) workers=$2; shift 2 ;;
-    -*) echo "regenerate_docs.sh: unknown option $1 (expected --list, -j N or job names)" >&2; exit 2 ;;
-    *)
-      job_names | grep -qx "$1" || { echo "regenerate_docs.sh: no job '$1' (--list)" >&2; exit 2; }
-      selected+=("$1"); shift ;;
-  esac
-done
-[ ${#selected[@]} -gt 0 ] || mapfile -t selected < <(job_names)
+# The whole call is one function, read before it runs, so that editing this file while a call
+# runs (hours) cannot change what that call does next.
+main() {
+  workers=$NPROC
+  save=0
+  selected=()
+  while [ $# -gt 0 ]; do
+    case $1 in
+      --save) save=1; shift ;;
+      --list)
+        for j in "${JOBS[@]}"; do IFS='|' read -r n d w <<< "$j"; printf '%-18s %s (%s)\n' "$n" "$w" "$d"; done
+        exit 0 ;;
+      -j) workers=$2; shift 2 ;;
+      -*) echo "regenerate_docs.sh: unknown option $1 (expected --list, -j N or job names)" >&2; exit 2 ;;
+      *)
+        job_names | grep -qx "$1" || { echo "regenerate_docs.sh: no job '$1' (--list)" >&2; exit 2; }
+        selected+=("$1"); shift ;;
+    esac
+  done
+  [ ${#selected[@]} -gt 0 ] || mapfile -t selected < <(job_names)
 
-mkdir -p "$OUT"
-version=$("$RCDEM" --version)
-if [ -f "$OUT/COMMIT" ] && [ "$(cat "$OUT/COMMIT")" != "$version" ]; then
-  echo "regenerate_docs.sh: $OUT holds figures of '$(cat "$OUT/COMMIT")', and $RCDEM is" \
-       "'$version': one commit per set of figures (set OUT for a new one)" >&2
-  exit 1
-fi
-echo "$version" > "$OUT/COMMIT"
-if [ $save = 1 ]; then
-  save_runs
-  exit 0
-fi
-restore_runs
-# Claims of an interrupted call (its process gone); a call still running keeps its own.
-for claim in "$OUT"/*.claim; do
-  [ -d "$claim" ] || continue
-  pid=$(cat "$claim/pid" 2> /dev/null || true)
-  if [ -z "$pid" ] || ! kill -0 "$pid" 2> /dev/null; then rm -rf "$claim"; fi
-done
-for ((w = 0; w < workers; ++w)); do worker "${selected[@]}" & done
-wait
-if [ -f "$OUT/size_transition/DONE" ] && [ -f "$OUT/size_quick_plain/DONE" ] &&
-   [ ! -f "$OUT/size_transition/report/size_effect.json" ]; then
-  report_size_transition "$OUT/size_transition" >> "$OUT/size_transition/log" 2>&1 ||
-    echo "$(date -u '+%F %H:%M:%S') FAILED the transition's report" >> "$OUT/progress.log"
-fi
-if [ -f "$OUT/study_seed1/DONE" ] && [ -f "$OUT/study_more/DONE" ] &&
-   [ ! -f "$OUT/study_report/report.json" ]; then
-  mkdir -p "$OUT/study_report"
-  report_study >> "$OUT/study_report/log" 2>&1 ||
-    echo "$(date -u '+%F %H:%M:%S') FAILED the full-size study's report" >> "$OUT/progress.log"
-fi
-grep -h "FAILED" "$OUT/progress.log" 2> /dev/null | tail -5 || true
+  mkdir -p "$OUT"
+  version=$("$RCDEM" --version)
+  if [ -f "$OUT/COMMIT" ] && [ "$(cat "$OUT/COMMIT")" != "$version" ]; then
+    echo "regenerate_docs.sh: $OUT holds figures of '$(cat "$OUT/COMMIT")', and $RCDEM is" \
+         "'$version': one commit per set of figures (set OUT for a new one)" >&2
+    exit 1
+  fi
+  echo "$version" > "$OUT/COMMIT"
+  if [ $save = 1 ]; then
+    save_runs
+    exit 0
+  fi
+  restore_runs
+  # Claims of an interrupted call (its process gone); a call still running keeps its own.
+  for claim in "$OUT"/*.claim; do
+    [ -d "$claim" ] || continue
+    pid=$(cat "$claim/pid" 2> /dev/null || true)
+    if [ -z "$pid" ] || ! kill -0 "$pid" 2> /dev/null; then rm -rf "$claim"; fi
+  done
+  for ((w = 0; w < workers; ++w)); do worker "${selected[@]}" & done
+  wait
+  if [ -f "$OUT/size_transition/DONE" ] && [ -f "$OUT/size_quick_plain/DONE" ] &&
+     [ ! -f "$OUT/size_transition/report/size_effect.json" ]; then
+    report_size_transition "$OUT/size_transition" >> "$OUT/size_transition/log" 2>&1 ||
+      echo "$(date -u '+%F %H:%M:%S') FAILED the transition's report" >> "$OUT/progress.log"
+  fi
+  if [ -f "$OUT/study_seed1/DONE" ] && [ -f "$OUT/study_more/DONE" ] &&
+     [ ! -f "$OUT/study_report/report.json" ]; then
+    mkdir -p "$OUT/study_report"
+    report_study >> "$OUT/study_report/log" 2>&1 ||
+      echo "$(date -u '+%F %H:%M:%S') FAILED the full-size study's report" >> "$OUT/progress.log"
+  fi
+  grep -h "FAILED" "$OUT/progress.log" 2> /dev/null | tail -5 || true
+}
+
+main "$@"; exit $?  # one line: nothing after it is read
