@@ -14,14 +14,15 @@
 #               runs the study's threads (nproc for -j 1; their thread tuner gives way to the
 #               other jobs: `rcdem study` has no --threads). Threads do not change the bits.
 #   --list      the jobs, one a line, with what each regenerates
-#   --save      keep the finished runs of every study in OUT, one archive a run, in
+#   --save      keep the finished runs of the studies in OUT, one archive a run, in
 #               KEEP/JOB/STUDY/RUN.tar.xz (default KEEP docs/figures/regen; tools/study_archive.py
 #               pack-runs, with the study's own tables), and the done jobs' DONE files: to be
-#               committed. The whole set takes
-#               longer than a working session on 2 cores and a session may start on a fresh
-#               machine: a later call unpacks KEEP's runs into a job's studies that are not done,
-#               and each study runs only what is missing. KEEP/COMMIT names the binary; runs of
-#               another binary are neither used nor added to.
+#               committed. The whole set takes longer than a working session on 2 cores, and a
+#               session may start on a fresh machine: a later call marks KEEP's done jobs done,
+#               unpacks KEEP's runs into their studies, and each study runs only what is
+#               missing. Runs of a done job are kept only where a later report reads them
+#               (READ_LATER). KEEP/COMMIT names the binary; runs of another binary are neither
+#               used nor added to.
 #   RCDEM       the binary (default build/rcdem); OUT the directory (default results/regen).
 #               OUT/COMMIT holds the first binary's --version: another binary is refused, so that
 #               every figure comes from one commit (a new commit starts a new OUT).
@@ -292,6 +293,10 @@ worker() {
 # The studies of OUT: OUT/JOB/STUDY holding a cases.csv.
 studies() { find "$OUT" -mindepth 3 -maxdepth 3 -name cases.csv -printf '%h\n' | sort; }
 
+# The jobs whose studies a report reads after the job is done (report_size_transition,
+# report_study): their runs are kept even when done.
+READ_LATER="size_quick_plain size_transition study_seed1 study_more"
+
 save_runs() {
   if [ -f "$KEEP/COMMIT" ] && [ "$(cat "$KEEP/COMMIT")" != "$version" ]; then
     echo "regenerate_docs.sh: $KEEP keeps runs of '$(cat "$KEEP/COMMIT")', not of '$version':" \
@@ -300,9 +305,12 @@ save_runs() {
   fi
   mkdir -p "$KEEP"
   echo "$version" > "$KEEP/COMMIT"
-  local study rel
+  local study rel job
   for study in $(studies); do
     rel=${study#"$OUT"/}
+    job=${rel%%/*}
+    # A done job's runs are kept only where a report made after it reads them.
+    if [ -f "$OUT/$job/DONE" ] && ! [[ " $READ_LATER " == *" $job "* ]]; then continue; fi
     $PY tools/study_archive.py pack-runs "$study" "$KEEP/$rel"
   done
   for done_file in "$OUT"/*/DONE; do
