@@ -110,7 +110,8 @@ def unpack(archive, study):
 
 def figure_runs(study):
     """The finished runs of a three-point bending study whose Figures 8 and 9 are published."""
-    label = json.load(open(os.path.join(study, "study.json"))).get("study", "")
+    path = os.path.join(study, "study.json")
+    label = json.load(open(path)).get("study", "") if os.path.exists(path) else ""
     if not label.startswith("three_point_bending"):
         return set()
     rows = csv.DictReader(open(os.path.join(study, "cases.csv")))
@@ -120,10 +121,11 @@ def figure_runs(study):
 
 
 def pack_runs(study, runs_dir):
+    runs = finished_runs(study)
     os.makedirs(runs_dir, exist_ok=True)
     added = 0
     figures = figure_runs(study)
-    for run in sorted(finished_runs(study)):
+    for run in sorted(runs):
         archive = os.path.join(runs_dir, run + ".tar.xz")
         if os.path.exists(archive):
             continue
@@ -165,7 +167,7 @@ def unpack_runs(runs_dir, study):
             sys.exit(f"{archive}: cannot be read as a run's archive ({e})")
         os.replace(target + ".part", target)
         added += 1
-    for f in STUDY_FILES:  # so that `rcdem study -o STUDY_DIR` knows the directory for a study's
+    for f in STUDY_FILES:  # `rcdem study -o` refuses a non-empty directory without study.json
         if os.path.exists(os.path.join(runs_dir, f)) and not os.path.exists(os.path.join(study, f)):
             shutil.copyfile(os.path.join(runs_dir, f), os.path.join(study, f))
     print(f"{study}: {added} runs from {runs_dir}")
