@@ -61,8 +61,9 @@ def probe(d):
     print(f"particles {p['total']:,} ({p['aggregate']:,} aggregate, {p['mortar']:,} mortar, "
           f"{p['steel']:,} interface spheres of {spec['bars']} bars), {spec['cylinders']:,} "
           f"cylinders; contacts {spec['contacts']:,}; local points {spec['local_points']:,}")
+    threads = s["threads"].get("max", "?")
     print(f"time step {s['time_step_s']:.3g} s; {s['steps']:,} steps in {s['loop_seconds']:.1f} s "
-          f"({s['steps_per_second']:.2f} steps/s, up to {s['threads'].get('max', '?')} threads); set-up "
+          f"({s['steps_per_second']:.2f} steps/s, up to {threads} threads); set-up "
           f"{s['seconds'] - s['loop_seconds']:.0f} s; rcdem {s['rcdem']['git_hash']}")
 
 
