@@ -321,7 +321,7 @@ save_runs() {
   done
 }
 
-# The kept runs of the jobs not done here, each into its study (where it is not there yet).
+# KEEP's runs, each into its study where it is not there yet, and KEEP's done jobs done.
 restore_runs() {
   [ -f "$KEEP/COMMIT" ] || return 0
   if [ "$(cat "$KEEP/COMMIT")" != "$version" ]; then
