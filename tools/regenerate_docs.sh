@@ -224,8 +224,9 @@ job_size_transition() {
 }
 # With the plain beams of size_quick_plain: made when both are done (reports below).
 report_size_transition() {
-  $PY tools/size_series_report.py -o "$1/report" "$OUT/size_quick_plain/study" "$1/transition" \
-    "$1/h026"
+  local t=$OUT/size_transition
+  $PY tools/size_series_report.py -o "$t/report" "$OUT/size_quick_plain/study" "$t/transition" \
+    "$t/h026"
 }
 
 job_size_full_plain() {
@@ -246,6 +247,18 @@ job_study_more() {
 # runs kept from earlier sessions bring their Figures 8 and 9 (study_archive.py pack-runs).
 report_study() {
   $PY tools/study_report.py -o "$OUT/study_report" "$OUT/study_seed1/seed1" "$OUT/study_more/more"
+}
+
+# late_report REPORT FILE JOB...: a report over several jobs' studies, made once every JOB is done
+# and FILE (what it writes) is not there yet; logged beside FILE.
+late_report() {
+  local report=$1 made=$2 job
+  shift 2
+  [ -f "$made" ] && return 0
+  for job in "$@"; do [ -f "$OUT/$job/DONE" ] || return 0; done
+  mkdir -p "$(dirname "$made")"
+  "$report" >> "$(dirname "$made")/log" 2>&1 ||
+    echo "$(date -u '+%F %H:%M:%S') FAILED $report" >> "$OUT/progress.log"
 }
 
 job_size_h400() {
@@ -383,17 +396,9 @@ main() {
   done
   for ((w = 0; w < workers; ++w)); do worker "${selected[@]}" & done
   wait
-  if [ -f "$OUT/size_transition/DONE" ] && [ -f "$OUT/size_quick_plain/DONE" ] &&
-     [ ! -f "$OUT/size_transition/report/size_effect.json" ]; then
-    report_size_transition "$OUT/size_transition" >> "$OUT/size_transition/log" 2>&1 ||
-      echo "$(date -u '+%F %H:%M:%S') FAILED the transition's report" >> "$OUT/progress.log"
-  fi
-  if [ -f "$OUT/study_seed1/DONE" ] && [ -f "$OUT/study_more/DONE" ] &&
-     [ ! -f "$OUT/study_report/report.json" ]; then
-    mkdir -p "$OUT/study_report"
-    report_study >> "$OUT/study_report/log" 2>&1 ||
-      echo "$(date -u '+%F %H:%M:%S') FAILED the full-size study's report" >> "$OUT/progress.log"
-  fi
+  late_report report_size_transition "$OUT/size_transition/report/size_effect.json" \
+    size_quick_plain size_transition
+  late_report report_study "$OUT/study_report/report.json" study_seed1 study_more
   grep -h "FAILED" "$OUT/progress.log" 2> /dev/null | tail -5 || true
 }
 
