@@ -57,7 +57,7 @@ JOBS=(
   "size_full_plain|docs/size-series.md|the plain beams 100 and 200 mm at full resolution, packings 1-3"
   "study_seed1|docs/case-study.md|the full-size study, every case on packing 1"
   "study_more|docs/case-study.md|the full-size study, nine cases on packings 2 and 3"
-  "size_h400|docs/size-series.md|the 400 mm reinforced beams, quick: 0.131% (p1), 0.188% and 0.262% (p1-3)"
+  "size_h400|docs/size-series.md|the 400 mm reinforced beams at 0.262%, quick, packings 1-3 (0.131% and 0.188%: size_transition)"
 )
 
 job_names() { for j in "${JOBS[@]}"; do echo "${j%%|*}"; done; }
@@ -261,12 +261,16 @@ late_report() {
     echo "$(date -u '+%F %H:%M:%S') FAILED $report" >> "$OUT/progress.log"
 }
 
+# The 400 mm beams at 0.131% and 0.188% run in size_transition's study (its scenarios hold them).
 job_size_h400() {
-  local t=examples/size_series/transition/quick s=examples/size_series/study/quick
-  study "$1/h400_013" size_series --scenarios $t --cases h400_rho0.13 --seeds 1
-  study "$1/h400_019" size_series --scenarios $t --cases h400_rho0.19 --seeds 1,2,3
-  study "$1/h400_026" size_series --scenarios $s --cases h400_rho0.26 --seeds 1,2,3
-  $PY tools/size_series_report.py -o "$1/report" "$1"/h400_0{13,19,26}
+  study "$1/h400_026" size_series --scenarios examples/size_series/study/quick \
+    --cases h400_rho0.26 --seeds 1,2,3
+}
+# Every quick beam of the series in one report: plain, transition, 0.262% (made when all are done).
+report_size_h400() {
+  local t=$OUT/size_transition
+  $PY tools/size_series_report.py -o "$OUT/size_h400/report" "$OUT/size_quick_plain/study" \
+    "$t/transition" "$t/h026" "$OUT/size_h400/h400_026"
 }
 
 # One job: claimed by making OUT/JOB.claim (atomic), done when its function returns.
@@ -307,8 +311,8 @@ worker() {
 studies() { find "$OUT" -mindepth 3 -maxdepth 3 -name cases.csv -printf '%h\n' | sort; }
 
 # The jobs whose studies a report reads after the job is done (report_size_transition,
-# report_study): their runs are kept even when done.
-READ_LATER="size_quick_plain size_transition study_seed1 study_more"
+# report_study, report_size_h400): their runs are kept even when done.
+READ_LATER="size_quick_plain size_transition study_seed1 study_more size_h400"
 
 save_runs() {
   if [ -f "$KEEP/COMMIT" ] && [ "$(cat "$KEEP/COMMIT")" != "$version" ]; then
@@ -399,6 +403,8 @@ main() {
   late_report report_size_transition "$OUT/size_transition/report/size_effect.json" \
     size_quick_plain size_transition
   late_report report_study "$OUT/study_report/report.json" study_seed1 study_more
+  late_report report_size_h400 "$OUT/size_h400/report/size_effect.json" \
+    size_quick_plain size_transition size_h400
   grep -h "FAILED" "$OUT/progress.log" 2> /dev/null | tail -5 || true
 }
 
