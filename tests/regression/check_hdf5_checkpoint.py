@@ -67,9 +67,9 @@ with tempfile.TemporaryDirectory() as tmp:
 
     with h5py.File(newest, "r") as f:
         a = f.attrs
-        check(a["format"] == "rcdem checkpoint" and int(a["version"]) == 8 and
+        check(a["format"] == "rcdem checkpoint" and int(a["version"]) == 9 and
               int(a["step"]) == step and a["writer"].startswith("rcdem "),
-              f"h5py: the root's attributes (format, version 8, step {step}, writer)")
+              f"h5py: the root's attributes (format, version 9, step {step}, writer)")
         bad = []
         for name, g in f.items():
             count = int(g.attrs["count"])

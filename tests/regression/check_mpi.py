@@ -10,7 +10,7 @@
     four-point beam (two load plates, a gauge as the test's displacement: read every step);
   * a 2-rank run stopped by SIGINT after a checkpoint, resumed on 3 ranks, and another resumed on
     one process, end with the same outputs as the uninterrupted run (the checkpoint holds damaged
-    contacts held to their sums, gathered from both ranks: format 8);
+    contacts held to their sums, gathered from both ranks: format 8 on);
   * a bad scenario under `mpirun -q` (without -q mpirun adds its own note on the exit code): one
     error line (from rank 0), a non-zero exit, within seconds; another command than `run`:
     refused in one line;

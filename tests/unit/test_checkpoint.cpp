@@ -491,7 +491,7 @@ struct SmallRunParts {
 };
 
 TEST(Checkpoint, SectionWidthsAreThoseOfTheFormatVersion) {
-  ASSERT_EQ(io::kCheckpointVersion, 8U);
+  ASSERT_EQ(io::kCheckpointVersion, 9U);
   SmallRunParts run;
   Simulation& sim = run.sim;
   io::History& history = run.history;
@@ -504,6 +504,7 @@ TEST(Checkpoint, SectionWidthsAreThoseOfTheFormatVersion) {
       {"contacts.points", 9},
       {"contacts.held", 35},
       {"contacts.held.entry", 10},
+      {"contacts.held.clock", 2},
       {"interface.0", 17},
       {"interface.0.points", 9},
       {"nodes", 35},

@@ -328,3 +328,46 @@ TEST(HeldContacts, SameBitsForAnyThreadCountAndAfterARestart) {
   EXPECT_EQ(writer.damaged_points(), restored.damaged_points());
   fs::remove_all(dir);
 }
+
+// The softening clock (held_contacts.hpp): in the pulled box some softening holds end within
+// kShortSofteningHold steps and their contacts wait; a waiting contact is never held as softening;
+// and a checkpoint keeps every clock, so that a run restored where contacts wait continues with
+// the writer's bits (the restart above, at a step chosen for waiting clocks).
+TEST(HeldContacts, ShortSofteningHoldsWaitAndACheckpointKeepsTheirClocks) {
+  const Scenario sc = pulled_box(true);
+  Simulation writer(sc, build_specimen(sc)), restored(sc, build_specimen(sc));
+  const ConcreteContacts* concrete = concrete_part(writer);
+  ASSERT_NE(concrete, nullptr);
+  const HeldContacts& h = concrete->condensation().held;
+  Index waiting_steps = 0, step = 0;
+  for (; step < kSteps; ++step) {
+    writer.step();
+    Index waiting = 0;
+    for (std::size_t c = 0; c < h.held.size(); ++c) {
+      const std::int16_t clock = h.softening_clock[c];
+      ASSERT_GE(clock, -kSofteningBackoff);
+      ASSERT_LE(clock, kShortSofteningHold);
+      if (clock < 0) ++waiting;
+      // A contact held as softening counts its steps; one that waits is not held as softening.
+      if (h.held[c] && h.sums(static_cast<Index>(c)).slope_n < 0) ASSERT_GE(clock, 0) << c;
+    }
+    if (waiting > 0) ++waiting_steps;
+    if (waiting > 20 && step > kSteps / 2) break;
+  }
+  ASSERT_LT(step, kSteps) << "no step with more than 20 contacts waiting";
+  EXPECT_GT(waiting_steps, 100);
+  const fs::path dir =
+      fs::temp_directory_path() / ("rcdem_held_clock_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const fs::path file =
+      io::write_checkpoint(dir, io::CheckpointParts{&writer, nullptr, nullptr, nullptr}, 0);
+  io::restore_checkpoint(file, io::CheckpointParts{&restored, nullptr, nullptr, nullptr}, 0);
+  EXPECT_EQ(concrete_part(restored)->condensation().held.softening_clock, h.softening_clock);
+  for (int k = 0; k < 1000; ++k) {
+    writer.step();
+    restored.step();
+    ASSERT_EQ(load(writer), load(restored)) << "step " << k;
+  }
+  EXPECT_EQ(writer.strain_energy(), restored.strain_energy());
+  fs::remove_all(dir);
+}

@@ -322,6 +322,17 @@ template <typename Law>
   __builtin_prefetch(p + sizeof(HeldSums) - 1);
 }
 
+// A softening hold's clock (HeldContacts::softening_clock): a step held, and the hold's end, after
+// which a short hold makes its contact wait.
+[[gnu::always_inline]] inline void count_softening_step(HeldContacts& h, Index c) {
+  std::int16_t& clock = h.softening_clock[static_cast<std::size_t>(c)];
+  if (clock < kShortSofteningHold) ++clock;
+}
+[[gnu::always_inline]] inline void end_softening_hold(HeldContacts& h, Index c) {
+  std::int16_t& clock = h.softening_clock[static_cast<std::size_t>(c)];
+  clock = clock < kShortSofteningHold ? static_cast<std::int16_t>(-kSofteningBackoff) : 0;
+}
+
 // The held contacts `held[0, count)` of the block from `begin` (held_contacts.hpp): from their
 // sums in SIMD lanes while their points stay inside their rooms. The others have their points
 // brought up to the last evaluation (`previous`) in the stored frame, are released, get their
@@ -365,9 +376,11 @@ template <typename Law>
         h.last_du_n = out.du_n[k];
         for (int e = 0; e < 3; ++e) h.last_dd_n[e] = out.dd_n[e][k];
       }
+      if (h.slope_n < 0) count_softening_step(cond.held, c);
       continue;
     }
     prefetch_points(in.net, cs.point, c);
+    if (cond.held.sums(c).slope_n < 0) end_softening_hold(cond.held, c);
     release_held(law, previous, cs, cond, c);
     contact_frame(in, cs, &cond, c, frames[c - begin]);
     visit[visits++] = c;
@@ -378,7 +391,8 @@ template <typename Law>
 
 // The visited contacts `visit[0, count)` of the block from `begin`, just evaluated in their frames
 // `frames[c - begin]`, that are damaged and have every point inside its room are held from the
-// next step (hold_contact; u_nu > 0: softening points too).
+// next step (hold_contact; u_nu > 0: softening points too, unless the contact's softening clock
+// makes it wait: each visit then counts one off).
 [[gnu::noinline]] inline void hold_visited_contacts(const ContactInputs& in, const ContactState& cs,
                                                     ElasticCondensation& cond, const Index* visit,
                                                     Index count, const ContactFrame* frames,
@@ -387,9 +401,17 @@ template <typename Law>
   for (Index k = 0; k < count; ++k) {
     const Index c = visit[k];
     if (cond.intact[c] || !cond.eligible[c]) continue;
+    Real soften = u_nu;
+    if (u_nu > 0) {
+      std::int16_t& clock = cond.held.softening_clock[static_cast<std::size_t>(c)];
+      if (clock < 0) {
+        ++clock;
+        soften = 0.0;
+      }
+    }
     HeldSums h;
     if (hold_contact(cond.sums, c, frames[c - begin], in.pose, net.particle_a[c], net.particle_b[c],
-                     cs.point.data(), net.point_begin[c], net.point_begin[c + 1], u_nu, h)) {
+                     cs.point.data(), net.point_begin[c], net.point_begin[c + 1], soften, h)) {
       cond.held.sums(c) = h;
       cond.held.held[c] = 1;
     }

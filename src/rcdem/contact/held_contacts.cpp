@@ -19,6 +19,7 @@ static_assert(HeldContacts::kBlock == CondensedBlock::kSize,
 void HeldContacts::resize(Index contacts) {
   held.assign(static_cast<std::size_t>(contacts), 0);
   saved.assign(static_cast<std::size_t>(contacts), 0);
+  softening_clock.assign(static_cast<std::size_t>(contacts), 0);
   block.assign(static_cast<std::size_t>((contacts + kBlock - 1) / kBlock), {});
 }
 
@@ -39,6 +40,7 @@ Index HeldContacts::count() const {
 void HeldContacts::clear() {
   std::fill(held.begin(), held.end(), std::uint8_t{0});
   std::fill(saved.begin(), saved.end(), std::uint8_t{0});
+  std::fill(softening_clock.begin(), softening_clock.end(), std::int16_t{0});
   entry.clear();
   current = false;
 }

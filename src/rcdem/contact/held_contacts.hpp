@@ -62,6 +62,11 @@
 // caught up from those saved histories again. So a run computes the same bits whenever and however
 // often it is read, and a checkpoint holds the held contacts, their sums and their entry histories
 // beside the points (caught up): a restart continues with the bits of the run that wrote it.
+// Where softening contacts open only a few steps at a time (a beam's crack opens in bursts and its
+// faces ring), a softening hold costs more (entry sums, catch-up) than the visits it saves: a
+// contact whose softening hold ends within kShortSofteningHold steps is not held as softening
+// again for its next kSofteningBackoff visits (HeldContacts::softening_clock; it may still be held
+// with its points inside their envelope). The clock is state: a checkpoint keeps it.
 #include <cstdint>
 #include <unordered_map>
 #include <vector>
@@ -112,6 +117,11 @@ void archive_fields(Record& r, S& h) {
   r.put(named("shrink_s", "1", h.shrink_s));
 }
 
+// A softening hold that ends within this many steps is short; its contact then waits this many
+// visits before it is held as softening again (above).
+inline constexpr std::int16_t kShortSofteningHold = 8;
+inline constexpr std::int16_t kSofteningBackoff = 64;
+
 // The held contacts of a network: a flag per contact and, per block of kBlock contacts (the
 // contact loop's, CondensedBlock::kSize) that has held one, the block's sums (allocated by the
 // thread that evaluates the block, so only cracked regions take memory).
@@ -121,6 +131,10 @@ struct HeldContacts {
   bool softening = false;                    // solver.hold_softening_contacts
   std::vector<std::uint8_t> held;            // per contact
   std::vector<std::vector<HeldSums>> block;  // per block, empty until one of its contacts is held
+  // Per contact: held as softening for this many steps so far (> 0, at most kShortSofteningHold),
+  // visits left before it may be held as softening again (< 0), or neither (0). Only with
+  // `softening`.
+  std::vector<std::int16_t> softening_clock;
   // A read's catch-up (above): per contact, whether its points' histories at entry are in `entry`
   // (changed only between steps, looked up by the step's threads); and whether every held
   // contact's points stand at the last evaluation (a read since the last step: a release then
@@ -133,7 +147,7 @@ struct HeldContacts {
   HeldSums& sums(Index c);  // c's, its block allocated if needed (only its block's thread)
   const HeldSums& sums(Index c) const;
   Index count() const;
-  void clear();  // nothing held (the sums stay allocated)
+  void clear();  // nothing held, every clock at 0 (the sums stay allocated)
   // Before a read's catch-up, for each held contact: its points' histories (`points`: all of the
   // network's, point_begin: where each contact's start) put back to its entry's, or saved. Between
   // steps only.
@@ -152,6 +166,17 @@ struct HeldRow {
 struct HeldEntryRow {
   std::int64_t point = 0;
   PlanePointState history{};
+};
+// A contact's non-zero softening clock (HeldContacts::softening_clock; "contacts.held.clock").
+struct SofteningClockRow {
+  std::int64_t contact = 0;
+  std::int64_t clock = 0;
+};
+// Everything a checkpoint keeps of the held contacts, each list ascending by contact or point.
+struct HeldRows {
+  std::vector<HeldRow> held;
+  std::vector<HeldEntryRow> entry;
+  std::vector<SofteningClockRow> clock;
 };
 
 // Whether contact c, just evaluated through its points in the frame `f` at the poses `pose` (A = a,

@@ -33,7 +33,7 @@ class CrackRecord;
 
 inline constexpr char kCheckpointMagic[9] = "RCDEMCKP";
 // The version written, and the oldest read (docs/checkpoint.md: what changed between them).
-inline constexpr std::uint32_t kCheckpointVersion = 8;
+inline constexpr std::uint32_t kCheckpointVersion = 9;
 inline constexpr std::uint32_t kOldestReadableCheckpointVersion = 4;
 
 // CRC-32 (IEEE 802.3, reflected, polynomial 0xEDB88320: the CRC of zlib, PNG and gzip), so that

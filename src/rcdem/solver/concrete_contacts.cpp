@@ -183,31 +183,30 @@ Real ConcreteContacts::held_energy(Index c) const {
                             net_->particle_b[c]);
 }
 
-void ConcreteContacts::held_rows(std::vector<HeldRow>& rows,
-                                 std::vector<HeldEntryRow>& entry) const {
+void ConcreteContacts::held_rows(HeldRows& rows) const {
   if (comm_) {
     rows = gathered_held_;
-    entry = gathered_entry_;
     return;
   }
-  local_held_rows(0, net_->contact_count(), rows, entry);
+  local_held_rows(0, net_->contact_count(), rows);
 }
 
-void ConcreteContacts::local_held_rows(Index lo, Index hi, std::vector<HeldRow>& rows,
-                                       std::vector<HeldEntryRow>& entry) const {
+void ConcreteContacts::local_held_rows(Index lo, Index hi, HeldRows& rows) const {
   const HeldContacts& h = condensation_.held;
   if (h.held.empty()) return;  // no condensation
   const ContactNetwork& net = *net_;
   for (Index c = lo; c < hi; ++c) {
+    if (const std::int16_t clock = h.softening_clock[static_cast<std::size_t>(c)]; clock != 0)
+      rows.clock.push_back({c, clock});
     if (!h.held[static_cast<std::size_t>(c)]) continue;
-    rows.push_back({c, h.sums(c)});
+    rows.held.push_back({c, h.sums(c)});
     // Saved by a read, or (no read since it was held) its points' histories themselves.
     const Index begin = net.point_begin[c];
     const std::vector<PlanePointState>* e =
         h.saved[static_cast<std::size_t>(c)] ? &h.entry.at(c) : nullptr;
     for (Index m = begin; m < net.point_begin[c + 1]; ++m)
-      entry.push_back({m, e ? (*e)[static_cast<std::size_t>(m - begin)]
-                            : contacts_.point.records[static_cast<std::size_t>(m)].history});
+      rows.entry.push_back({m, e ? (*e)[static_cast<std::size_t>(m - begin)]
+                                 : contacts_.point.records[static_cast<std::size_t>(m)].history});
   }
 }
 
@@ -229,53 +228,66 @@ std::vector<Row> gather_rows(Communicator& comm, const std::vector<Row>& local) 
 void ConcreteContacts::gather_held() {
   // Each rank's own contacts (disjoint ranges, ascending by rank), held where it evaluates them.
   const auto r = static_cast<std::size_t>(comm_->rank());
-  std::vector<HeldRow> rows;
-  std::vector<HeldEntryRow> entry;
-  local_held_rows(own_contacts_[r], own_contacts_[r + 1], rows, entry);
-  gathered_held_ = gather_rows(*comm_, rows);
-  gathered_entry_ = gather_rows(*comm_, entry);
+  HeldRows rows;
+  local_held_rows(own_contacts_[r], own_contacts_[r + 1], rows);
+  gathered_held_.held = gather_rows(*comm_, rows.held);
+  gathered_held_.entry = gather_rows(*comm_, rows.entry);
+  gathered_held_.clock = gather_rows(*comm_, rows.clock);
 }
 
-std::string ConcreteContacts::held_rows_fault(const std::vector<HeldRow>& rows,
-                                              const std::vector<HeldEntryRow>& entry) const {
-  if (!rows.empty() && condensation_.sums.empty())
+std::string ConcreteContacts::held_rows_fault(const HeldRows& rows) const {
+  if ((!rows.held.empty() || !rows.clock.empty()) && condensation_.sums.empty())
     return "contacts held where this run holds none (solver.condense_elastic_contacts off)";
   const ContactNetwork& net = *net_;
   std::size_t k = 0;
   Index last = -1;
-  for (const HeldRow& w : rows) {
+  for (const HeldRow& w : rows.held) {
     if (w.contact <= last || w.contact >= net.contact_count())
       return fmt::format("contact {} out of range or out of order", w.contact);
     last = w.contact;
     for (Index m = net.point_begin[last]; m < net.point_begin[last + 1]; ++m, ++k)
-      if (k >= entry.size() || entry[k].point != m)
+      if (k >= rows.entry.size() || rows.entry[k].point != m)
         return fmt::format("contact {}'s entry points are not its points", last);
   }
-  if (k != entry.size()) return "entry points of contacts not held";
+  if (k != rows.entry.size()) return "entry points of contacts not held";
+  last = -1;
+  for (const SofteningClockRow& w : rows.clock) {
+    if (w.contact <= last || w.contact >= net.contact_count())
+      return fmt::format("clock of contact {} out of range or out of order", w.contact);
+    last = w.contact;
+    if (w.clock < -kSofteningBackoff || w.clock > kShortSofteningHold || w.clock == 0)
+      return fmt::format("contact {}'s clock {} is not in [{}, {}] less 0", w.contact, w.clock,
+                         -kSofteningBackoff, kShortSofteningHold);
+  }
   return {};
 }
 
-void ConcreteContacts::apply_held_rows(const std::vector<HeldRow>& rows,
-                                       const std::vector<HeldEntryRow>& entry) {
+void ConcreteContacts::apply_held_rows(const HeldRows& rows) {
   HeldContacts& h = condensation_.held;
   const ContactNetwork& net = *net_;
   std::vector<std::uint8_t> evaluated(h.block.size(), contacts_.listed ? 0 : 1);
   for (const Index b : contacts_.evaluated_blocks) evaluated[static_cast<std::size_t>(b)] = 1;
+  const auto evaluated_here = [&](Index c) {
+    return evaluated[static_cast<std::size_t>(c / HeldContacts::kBlock)] != 0;
+  };
   std::size_t k = 0;  // held_rows_fault: the entry rows are the held contacts' points in order
-  for (const HeldRow& w : rows) {
+  for (const HeldRow& w : rows.held) {
     const Index c = w.contact;
     const Index count = net.points_of(c);
     k += static_cast<std::size_t>(count);
-    if (!evaluated[static_cast<std::size_t>(c / HeldContacts::kBlock)]) continue;
+    if (!evaluated_here(c)) continue;
     std::vector<PlanePointState>& e = h.entry[c];
     e.resize(static_cast<std::size_t>(count));
     for (Index m = 0; m < count; ++m)
-      e[static_cast<std::size_t>(m)] = entry[k - static_cast<std::size_t>(count - m)].history;
+      e[static_cast<std::size_t>(m)] = rows.entry[k - static_cast<std::size_t>(count - m)].history;
     h.sums(c) = w.sums;
     h.held[static_cast<std::size_t>(c)] = 1;
     h.saved[static_cast<std::size_t>(c)] = 1;
     if (w.sums.open_margin >= 0) restore_broken_point_sums(c, e);
   }
+  for (const SofteningClockRow& w : rows.clock)
+    if (evaluated_here(w.contact))
+      h.softening_clock[static_cast<std::size_t>(w.contact)] = static_cast<std::int16_t>(w.clock);
   h.current = true;
 }
 

@@ -52,34 +52,39 @@ class ConcreteContacts final : public StepPart {
 
   // The checkpoint's "contacts" (core/archive.hpp). Restored: which contacts are intact follows
   // from the points' damage, and none is condensed (their histories were complete when saved);
-  // the held ones (format 8 on) stay held, their points current (held_contacts.hpp). Formats 6's
-  // and 7's held rows (before contacts with broken, then softening points were held) are not read:
-  // such a file restarts with nothing held, as formats 4 and 5 do (its points were caught up when
-  // written).
+  // the held ones (format 8 on) stay held, their points current (held_contacts.hpp), and the
+  // softening clocks (format 9 on) run on. Formats 6's and 7's held rows (before contacts with
+  // broken, then softening points were held) are not read: such a file restarts with nothing
+  // held, as formats 4 and 5 do (its points were caught up when written); before format 9 every
+  // clock restarts at 0.
   template <class Archive, class Self>
   static void serialize(Archive& ar, Self& s) {
     ContactState::serialize(ar, "contacts", s.contacts_);
-    std::vector<HeldRow> held;
-    std::vector<HeldEntryRow> entry;
-    bool with_held = true;  // format 8 on (above)
-    if constexpr (Archive::loading)
+    HeldRows rows;
+    bool with_held = true, with_clock = true;  // formats 8 and 9 on (above)
+    if constexpr (Archive::loading) {
       with_held = ar.version() >= 8;
-    else
-      s.held_rows(held, entry);
+      with_clock = ar.version() >= 9;
+    } else {
+      s.held_rows(rows);
+    }
     if (with_held) {
-      ar.list("contacts.held", held, member("contact", "-", &HeldRow::contact),
+      ar.list("contacts.held", rows.held, member("contact", "-", &HeldRow::contact),
               member("sums", "", &HeldRow::sums));
-      ar.list("contacts.held.entry", entry, member("point", "-", &HeldEntryRow::point),
+      ar.list("contacts.held.entry", rows.entry, member("point", "-", &HeldEntryRow::point),
               member("history", "", &HeldEntryRow::history));
     }
+    if (with_clock)
+      ar.list("contacts.held.clock", rows.clock, member("contact", "-", &SofteningClockRow::contact),
+              member("clock", "-", &SofteningClockRow::clock));
     if constexpr (Archive::loading) {
       if (ar.applying()) s.energy_kept_ = false;
       if (ar.applying()) {
-        if (const std::string why = s.held_rows_fault(held, entry); !why.empty())
+        if (const std::string why = s.held_rows_fault(rows); !why.empty())
           ar.reject("section 'contacts.held': " + why);
         if (!s.condensation_.sums.empty()) {
           s.condensation_.reset_flags(*s.net_, s.contacts_.point.damage());
-          s.apply_held_rows(held, entry);
+          s.apply_held_rows(rows);
         }
       }
     }
@@ -89,19 +94,19 @@ class ConcreteContacts final : public StepPart {
   ContactInputs inputs(const std::vector<Vec3>& positions,
                        const std::vector<Eigen::Matrix3d>& rotation, Real dt) const;
   Real held_energy(Index c) const;  // held contact c's at the last evaluation
-  // The held contacts' rows, ascending (after a read's catch-up: every one's entry saved): this
-  // rank's own; rank 0 of a distributed run, every rank's (gather_held).
-  void held_rows(std::vector<HeldRow>& rows, std::vector<HeldEntryRow>& entry) const;
-  // ... of contacts [lo, hi) held on this rank, appended.
-  void local_held_rows(Index lo, Index hi, std::vector<HeldRow>& rows,
-                       std::vector<HeldEntryRow>& entry) const;
+  // The held contacts' rows, ascending (after a read's catch-up: every one's entry saved), with
+  // the non-zero softening clocks: this rank's own; rank 0 of a distributed run, every rank's
+  // (gather_held).
+  void held_rows(HeldRows& rows) const;
+  // ... of contacts [lo, hi) evaluated on this rank, appended.
+  void local_held_rows(Index lo, Index hi, HeldRows& rows) const;
   // What is wrong with restored rows (empty: nothing): contacts out of range or not ascending,
-  // entry points not exactly the held contacts' points in order, or any held with condensation
-  // off.
-  std::string held_rows_fault(const std::vector<HeldRow>& rows,
-                              const std::vector<HeldEntryRow>& entry) const;
-  // The rows of the contacts this rank evaluates held again, their points current.
-  void apply_held_rows(const std::vector<HeldRow>& rows, const std::vector<HeldEntryRow>& entry);
+  // entry points not exactly the held contacts' points in order, a clock out of its range, or any
+  // held with condensation off.
+  std::string held_rows_fault(const HeldRows& rows) const;
+  // The rows of the contacts this rank evaluates held again, their points current, their clocks
+  // set.
+  void apply_held_rows(const HeldRows& rows);
   // Held contact c with broken points: the condensation's sums hold_contact gave it, from its
   // points' histories at entry.
   void restore_broken_point_sums(Index c, const std::vector<PlanePointState>& entry);
@@ -125,8 +130,7 @@ class ConcreteContacts final : public StepPart {
   bool energy_kept_ = false;
   std::vector<Index> own_contacts_;  // distributed: each rank's own contacts (ranks + 1 offsets)
   // Rank 0 of a distributed run: every rank's held rows at the last gather (gather_held).
-  std::vector<HeldRow> gathered_held_;
-  std::vector<HeldEntryRow> gathered_entry_;
+  HeldRows gathered_held_;
 };
 
 }  // namespace rcdem
