@@ -10,7 +10,8 @@
     four-point beam (two load plates, a gauge as the test's displacement: read every step);
   * a 2-rank run stopped by SIGINT after a checkpoint, resumed on 3 ranks, and another resumed on
     one process, end with the same outputs as the uninterrupted run (the checkpoint holds damaged
-    contacts held to their sums, gathered from both ranks: format 8 on);
+    contacts held to their sums, gathered from both ranks: format 8 on); the tension cube with
+    softening contacts held, resumed on 3 ranks (its checkpoint holds their clocks: format 9);
   * a bad scenario under `mpirun -q` (without -q mpirun adds its own note on the exit code): one
     error line (from rank 0), a non-zero exit, within seconds; another command than `run`:
     refused in one line;
@@ -61,6 +62,10 @@ CASES = {
     # Every contact through its points (no condensation): the dissipation per contact.
     "tension_cube_points": ("tests/golden/scenarios/tension_cube60.toml",
                             ["--set", "solver.condense_elastic_contacts=false"], (3,)),
+    # Softening contacts held too, with their clocks (docs/model.md): the clocks travel with the
+    # contacts' owners; resumed across rank counts below.
+    "tension_cube_softening": ("tests/golden/scenarios/tension_cube60.toml",
+                               ["--set", "solver.hold_softening_contacts=true"], (2,)),
     "cyclic_pull_out": ("examples/cyclic/pull_out.toml", [], (3,)),
     # Two load plates and a gauge as the test's displacement: rank 0 reads the gauge's particles
     # every step, so it gathers every particle's motion every step.
@@ -134,9 +139,9 @@ def checkpoints(d):
     return sorted(int(m.group(1)) for f in os.listdir(d) if (m := CKPT.match(f)))
 
 
-def interrupted_run(tmp, out, scenario, extra):
+def interrupted_run(tmp, out, scenario, extra, every=2000):
     """A 2-rank run stopped by SIGINT once it has written a checkpoint past step 0."""
-    p = subprocess.Popen(command(2, ["run", scenario, "-o", out, "--checkpoint-every", "2000"] +
+    p = subprocess.Popen(command(2, ["run", scenario, "-o", out, "--checkpoint-every", str(every)] +
                                  extra), stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                          text=True, env=env())
     t0 = time.time()
@@ -147,27 +152,39 @@ def interrupted_run(tmp, out, scenario, extra):
     return p.returncode, err
 
 
+# Resumed runs: scenario, extra options, the reference run of bitwise(), the rank counts that
+# resume a 2-rank checkpoint, the checkpoints' interval (the cube cracks after step 2,000) and
+# the checkpoint's section that must not be empty.
+RESUMES = [
+    ("examples/pull_out/NL-B.toml", [], "pull_out_NL-B_1", (3, 1), 2000, "contacts.held"),
+    ("tests/golden/scenarios/tension_cube60.toml", ["--set", "solver.hold_softening_contacts=true"],
+     "tension_cube_softening_1", (3,), 5000, "contacts.held.clock"),
+]
+
+
 def resume_other_rank_count(tmp):
-    scenario = os.path.join(source, "examples/pull_out/NL-B.toml")
-    ref = os.path.join(tmp, "pull_out_NL-B_1")
-    for ranks in (3, 1):
-        out = os.path.join(tmp, f"resume_2_to_{ranks}")
-        code, err = interrupted_run(tmp, out, scenario, [])
-        check(code != 0 and checkpoints(out),
-              f"a 2-rank run stops on SIGINT with a checkpoint (exit {code}, checkpoints "
-              f"{checkpoints(out)})", err[-400:])
-        held = 0
-        if checkpoints(out):
-            last = os.path.join(out, f"checkpoint_{checkpoints(out)[-1]:012d}.h5")
-            with h5py.File(last, "r") as f:
-                held = f["contacts.held/contact"].shape[0]
-        check(held > 0, f"the 2-rank checkpoint holds contacts held to their sums ({held})")
-        r = run(ranks, ["run", "--resume", out])
-        check(r.returncode == 0, f"the 2-rank checkpoint resumes on {ranks} rank(s)",
-              r.stderr[-400:])
-        if r.returncode == 0:
-            same, why = same_outputs(ref, out)
-            check(same, f"resumed on {ranks} rank(s): the same bits as the uninterrupted run", why)
+    for scenario, extra, ref_name, counts, every, section in RESUMES:
+        scenario = os.path.join(source, scenario)
+        ref = os.path.join(tmp, ref_name)
+        for ranks in counts:
+            out = os.path.join(tmp, f"resume_{ref_name}_2_to_{ranks}")
+            code, err = interrupted_run(tmp, out, scenario, extra, every)
+            check(code != 0 and checkpoints(out),
+                  f"{ref_name}: a 2-rank run stops on SIGINT with a checkpoint (exit {code}, "
+                  f"checkpoints {checkpoints(out)})", err[-400:])
+            rows = 0
+            if checkpoints(out):
+                last = os.path.join(out, f"checkpoint_{checkpoints(out)[-1]:012d}.h5")
+                with h5py.File(last, "r") as f:
+                    rows = f[section + "/contact"].shape[0]
+            check(rows > 0, f"{ref_name}: the 2-rank checkpoint's {section} has rows ({rows})")
+            r = run(ranks, ["run", "--resume", out])
+            check(r.returncode == 0, f"{ref_name}: the 2-rank checkpoint resumes on {ranks} "
+                  "rank(s)", r.stderr[-400:])
+            if r.returncode == 0:
+                same, why = same_outputs(ref, out)
+                check(same, f"{ref_name}: resumed on {ranks} rank(s), the same bits as the "
+                      "uninterrupted run", why)
 
 
 def failures(tmp):

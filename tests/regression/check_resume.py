@@ -233,10 +233,10 @@ try:
           "manifest: interrupted by SIGINT, its last checkpoint")
     if ck:
         h = parse_checkpoint(ck[-1][1])
-        check(h["magic"] == b"RCDEMCKP" and h["version"] == 8 and h["bom"] == 0x01020304
+        check(h["magic"] == b"RCDEMCKP" and h["version"] == 9 and h["bom"] == 0x01020304
               and h["size"] == len(h["data"]) and h["step"] == at_step and h["crc_ok"]
               and h["writer"].startswith("rcdem "),
-              f"the checkpoint reads as documented (h5py, the image of format 7: "
+              f"the checkpoint reads as documented (h5py, the image of format 9: "
               f"{len(h['data'])} bytes, {len(h['sections'])} sections, CRC-32 checked by zlib)")
         need = {"bodies": 22, "bodies.step": 3, "contacts": 17, "contacts.points": 9,
                 "interface.0": 17, "interface.0.points": 9, "nodes": 35, "plates": 8,
