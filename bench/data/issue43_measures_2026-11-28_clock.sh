@@ -8,7 +8,7 @@
 # clock 0); CK9 the same written by B (format 9); CKA the AN4 NL-B beam at step 112,000 written by
 # A from 551b674's checkpoint (`rcdem_step_bench AN4 1 ... --checkpoint OLD --save-checkpoint DIR`).
 # The figure regeneration (nice 19) was paused with SIGSTOP during each comparison.
-cd /work/main
+cd "$(dirname "$0")/../.."
 date -u; nproc; grep -m1 "model name" /proc/cpuinfo
 S=results/s45; mkdir -p $S/bin
 soft() { sed -e 's|^\[solver\]|[solver]\nhold_softening_contacts = true|' \

@@ -31,7 +31,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from checklist import Checklist  # noqa: E402
-from checkpoint_image import binary_image  # noqa: E402
+from checkpoint_image import binary_image, documented_version  # noqa: E402
 from interrupted_run import checkpoints, interrupted_run  # noqa: E402
 
 rcdem, source = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
@@ -67,9 +67,11 @@ with tempfile.TemporaryDirectory() as tmp:
 
     with h5py.File(newest, "r") as f:
         a = f.attrs
-        check(a["format"] == "rcdem checkpoint" and int(a["version"]) == 9 and
+        documented = documented_version(source)
+        check(a["format"] == "rcdem checkpoint" and int(a["version"]) == documented and
               int(a["step"]) == step and a["writer"].startswith("rcdem "),
-              f"h5py: the root's attributes (format, version 9, step {step}, writer)")
+              f"h5py: the root's attributes (format, version {int(a['version'])}: "
+              f"docs/checkpoint.md's {documented}, step {step}, writer)")
         bad = []
         for name, g in f.items():
             count = int(g.attrs["count"])

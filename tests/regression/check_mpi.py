@@ -139,7 +139,7 @@ def checkpoints(d):
     return sorted(int(m.group(1)) for f in os.listdir(d) if (m := CKPT.match(f)))
 
 
-def interrupted_run(tmp, out, scenario, extra, every=2000):
+def interrupted_run(out, scenario, extra, every):
     """A 2-rank run stopped by SIGINT once it has written a checkpoint past step 0."""
     p = subprocess.Popen(command(2, ["run", scenario, "-o", out, "--checkpoint-every", str(every)] +
                                  extra), stdout=subprocess.PIPE, stderr=subprocess.PIPE,
@@ -152,38 +152,38 @@ def interrupted_run(tmp, out, scenario, extra, every=2000):
     return p.returncode, err
 
 
-# Resumed runs: scenario, extra options, the reference run of bitwise(), the rank counts that
-# resume a 2-rank checkpoint, the checkpoints' interval (the cube cracks after step 2,000) and
-# the checkpoint's section that must not be empty.
+# Resumed runs: a case of CASES (its uninterrupted 1-process run is bitwise()'s reference), the
+# rank counts that resume its 2-rank checkpoint, the checkpoints' interval (the cube cracks after
+# step 2,000) and the checkpoint's section that must not be empty.
 RESUMES = [
-    ("examples/pull_out/NL-B.toml", [], "pull_out_NL-B_1", (3, 1), 2000, "contacts.held"),
-    ("tests/golden/scenarios/tension_cube60.toml", ["--set", "solver.hold_softening_contacts=true"],
-     "tension_cube_softening_1", (3,), 5000, "contacts.held.clock"),
+    ("pull_out_NL-B", (3, 1), 2000, "contacts.held"),
+    ("tension_cube_softening", (3,), 5000, "contacts.held.clock"),
 ]
 
 
 def resume_other_rank_count(tmp):
-    for scenario, extra, ref_name, counts, every, section in RESUMES:
+    for name, counts, every, section in RESUMES:
+        scenario, extra, _ = CASES[name]
         scenario = os.path.join(source, scenario)
-        ref = os.path.join(tmp, ref_name)
+        ref = os.path.join(tmp, name + "_1")
         for ranks in counts:
-            out = os.path.join(tmp, f"resume_{ref_name}_2_to_{ranks}")
-            code, err = interrupted_run(tmp, out, scenario, extra, every)
+            out = os.path.join(tmp, f"resume_{name}_2_to_{ranks}")
+            code, err = interrupted_run(out, scenario, extra, every)
             check(code != 0 and checkpoints(out),
-                  f"{ref_name}: a 2-rank run stops on SIGINT with a checkpoint (exit {code}, "
+                  f"{name}: a 2-rank run stops on SIGINT with a checkpoint (exit {code}, "
                   f"checkpoints {checkpoints(out)})", err[-400:])
             rows = 0
             if checkpoints(out):
                 last = os.path.join(out, f"checkpoint_{checkpoints(out)[-1]:012d}.h5")
                 with h5py.File(last, "r") as f:
                     rows = f[section + "/contact"].shape[0]
-            check(rows > 0, f"{ref_name}: the 2-rank checkpoint's {section} has rows ({rows})")
+            check(rows > 0, f"{name}: the 2-rank checkpoint's {section} has rows ({rows})")
             r = run(ranks, ["run", "--resume", out])
-            check(r.returncode == 0, f"{ref_name}: the 2-rank checkpoint resumes on {ranks} "
-                  "rank(s)", r.stderr[-400:])
+            check(r.returncode == 0, f"{name}: the 2-rank checkpoint resumes on {ranks} rank(s)",
+                  r.stderr[-400:])
             if r.returncode == 0:
                 same, why = same_outputs(ref, out)
-                check(same, f"{ref_name}: resumed on {ranks} rank(s), the same bits as the "
+                check(same, f"{name}: resumed on {ranks} rank(s), the same bits as the "
                       "uninterrupted run", why)
 
 

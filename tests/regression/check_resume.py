@@ -38,7 +38,7 @@ import zlib
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from checklist import Checklist  # noqa: E402
-from checkpoint_image import binary_image  # noqa: E402
+from checkpoint_image import binary_image, documented_version  # noqa: E402
 
 rcdem, source = sys.argv[1], sys.argv[2]
 checks = Checklist()
@@ -233,10 +233,12 @@ try:
           "manifest: interrupted by SIGINT, its last checkpoint")
     if ck:
         h = parse_checkpoint(ck[-1][1])
-        check(h["magic"] == b"RCDEMCKP" and h["version"] == 9 and h["bom"] == 0x01020304
-              and h["size"] == len(h["data"]) and h["step"] == at_step and h["crc_ok"]
-              and h["writer"].startswith("rcdem "),
-              f"the checkpoint reads as documented (h5py, the image of format 9: "
+        documented = documented_version(source)
+        check(h["magic"] == b"RCDEMCKP" and h["version"] == documented
+              and h["bom"] == 0x01020304 and h["size"] == len(h["data"])
+              and h["step"] == at_step and h["crc_ok"] and h["writer"].startswith("rcdem "),
+              f"the checkpoint reads as documented (h5py, the image of format {h['version']}, "
+              f"docs/checkpoint.md's {documented}: "
               f"{len(h['data'])} bytes, {len(h['sections'])} sections, CRC-32 checked by zlib)")
         need = {"bodies": 22, "bodies.step": 3, "contacts": 17, "contacts.points": 9,
                 "interface.0": 17, "interface.0.points": 9, "nodes": 35, "plates": 8,

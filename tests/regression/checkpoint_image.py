@@ -1,6 +1,8 @@
 """A checkpoint's binary image (docs/checkpoint.md's byte layout) rebuilt from its HDF5 file by
 h5py alone, as the page describes: the regression scripts read checkpoints with it,
 independently of rcdem."""
+import os
+import re
 import struct
 
 import h5py
@@ -49,3 +51,17 @@ def binary_image(path):
                                          int(a["step"]), float(a["time"]), int(a["scenario_hash"]),
                                          int(a["specimen_fingerprint"]), len(names), len(writer))
         return head + writer + body + struct.pack("<I", int(a["crc32"]))
+
+
+# Where docs/checkpoint.md states the format version it describes.
+_VERSION_STATED = [r"sections' layout is version (\d+)", r"binary image \(format version (\d+)\)",
+                   r"`u32` format version = (\d+)", r"older than this rcdem reads \(\d+ to (\d+)\)"]
+
+
+def documented_version(source):
+    """The checkpoint format version docs/checkpoint.md describes, or None where its statements
+    of it are missing or disagree (the page then needs mending with the format)."""
+    text = open(os.path.join(source, "docs", "checkpoint.md")).read()
+    found = {int(m.group(1)) for pattern in _VERSION_STATED for m in re.finditer(pattern, text)}
+    stated = all(re.search(pattern, text) for pattern in _VERSION_STATED)
+    return found.pop() if stated and len(found) == 1 else None
