@@ -75,7 +75,7 @@ struct SolverSettings {
   Real particle_rotational_inertia_scaling = 1.0;  // the particles' moments of inertia only
   bool condense_elastic_contacts = true;           // contact/elastic_condensation.hpp
   bool hold_unloading_contacts = true;             // contact/held_contacts.hpp
-  bool hold_softening_contacts = false;            // ... softening ones too
+  bool hold_softening_contacts = true;             // ... softening ones too
 };
 
 // loading.adaptive_rate and its bounds (solver/loading_rate.hpp).

@@ -43,7 +43,7 @@
 // (1 - D) fn_max at un = un_max, its shear below the cap) follows, while each step opens it
 // further, fn = fn_max (u_nu - un) / (u_nu - u_n0): a line of slope -beta kn, beta = u_n0 /
 // (u_nu - u_n0), the same for every point of a contact (u_n0 = sigma_n,t / (E_bar / L)). So a
-// contact whose unbroken points all soften can be held (solver.hold_softening_contacts, off by
+// contact whose unbroken points all soften can be held (solver.hold_softening_contacts, on by
 // default) with L = diag(-beta, alpha, alpha) (slope_n = -beta) and the energy's normal row's
 // work and quadratic term scaled by -beta and beta^2; each
 // step its points dissipate sum (fn_J(t - 1) + fn_J(t)) / 2 (1 + beta) delta_J
