@@ -236,6 +236,11 @@ template <typename H>
 // Each array a little longer than a block: at 1 KB apart, every fourth array of a lane's column
 // shares its address modulo 4 KB, and the stores that fill a column stalled on it (4K aliasing).
 constexpr Index kLanes = HeldContacts::kBlock + 9;
+// The sums of the contact this many places on in the list are requested while one is gathered:
+// the block's listing requests every held contact's sums at once (contact_loop.hpp), more lines
+// than the core keeps in flight, and the first read of each line of the sums was where the kernel
+// waited most (bench/RESULTS.md).
+constexpr Index kAhead = 4;
 struct HeldLanes {
   Real no[3][kLanes], to[3][kLanes], wsum[3][kLanes], r0[3][kLanes], rc[3][kLanes], j[6][kLanes];
   Real h[kHeldSize][kLanes];
@@ -260,6 +265,12 @@ template <bool kEnergy>
   for (Index l = 0; l < count; ++l) {
     const Index c = list[l], a = in.particle_a[c], b = in.particle_b[c];
     const auto i = static_cast<std::size_t>(c);
+    if (l + kAhead < count) {  // 5 lines of HeldSums
+      const char* p = reinterpret_cast<const char*>(in.held_sums +
+                                                    kHeldSize * (list[l + kAhead] - in.begin));
+      for (int k = 0; k < kHeldSize * 8; k += 64) __builtin_prefetch(p + k);
+      __builtin_prefetch(p + kHeldSize * 8 - 1);
+    }
     for (int k = 0; k < 3; ++k) {
       g.no[k][l] = in.normal[3 * c + k];
       g.to[k][l] = in.tangent[3 * c + k];
