@@ -255,12 +255,11 @@ struct LaneSums {
   [[gnu::always_inline]] Real operator[](int k) const { return g.h[k][l]; }
 };
 
-template <bool kEnergy>
-[[gnu::always_inline]] inline void held_block_lanes(const HeldInputs& in, const Index* list,
-                                                    Index count, HeldLanes& g, HeldOutputs& out) {
-  // Every lane's numbers, gathered into arrays indexed by the lane before the lanes run: loads
-  // through a gathered contact number, and 64-bit products by 3 or 27 (no SIMD instruction below
-  // AVX-512DQ), kept GCC from vectorising the loop.
+// Every lane's numbers, gathered into arrays indexed by the lane before the lanes run: loads
+// through a gathered contact number, and 64-bit products by 3 or 27 (no SIMD instruction below
+// AVX-512DQ), kept GCC from vectorising the lanes' loop.
+[[gnu::always_inline]] inline void gather_lanes(const HeldInputs& in, const Index* list,
+                                                Index count, HeldLanes& g) {
   const CondensedSums& s = in.sums;
   for (Index l = 0; l < count; ++l) {
     const Index c = list[l], a = in.particle_a[c], b = in.particle_b[c];
@@ -289,6 +288,12 @@ template <bool kEnergy>
       g.pb[k][l] = in.pose[BodyPoses::kStride * b + k];
     }
   }
+}
+
+template <bool kEnergy>
+[[gnu::always_inline]] inline void held_block_lanes(const HeldInputs& in, const Index* list,
+                                                    Index count, HeldLanes& g, HeldOutputs& out) {
+  gather_lanes(in, list, count, g);
   const Real dt = in.dt;
 #pragma omp simd
   for (Index l = 0; l < count; ++l) {
