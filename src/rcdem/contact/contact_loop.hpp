@@ -317,9 +317,7 @@ template <typename Law>
 
 // A held contact's sums, requested while the block forms its frames (as prefetch_points).
 [[gnu::always_inline]] inline void prefetch_held(const HeldContacts& h, Index c) {
-  const char* p = reinterpret_cast<const char*>(&h.sums(c));
-  for (std::size_t k = 0; k < sizeof(HeldSums); k += 64) __builtin_prefetch(p + k);
-  __builtin_prefetch(p + sizeof(HeldSums) - 1);
+  prefetch_held_sums(&h.sums(c));
 }
 
 // A softening hold's clock (HeldContacts::softening_clock): a step held, and the hold's end, after

@@ -264,12 +264,9 @@ struct LaneSums {
   for (Index l = 0; l < count; ++l) {
     const Index c = list[l], a = in.particle_a[c], b = in.particle_b[c];
     const auto i = static_cast<std::size_t>(c);
-    if (l + kAhead < count) {  // 5 lines of HeldSums
-      const char* p = reinterpret_cast<const char*>(in.held_sums +
-                                                    kHeldSize * (list[l + kAhead] - in.begin));
-      for (int k = 0; k < kHeldSize * 8; k += 64) __builtin_prefetch(p + k);
-      __builtin_prefetch(p + kHeldSize * 8 - 1);
-    }
+    if (l + kAhead < count)
+      prefetch_held_sums(reinterpret_cast<const HeldSums*>(in.held_sums) +
+                         (list[l + kAhead] - in.begin));
     for (int k = 0; k < 3; ++k) {
       g.no[k][l] = in.normal[3 * c + k];
       g.to[k][l] = in.tangent[3 * c + k];

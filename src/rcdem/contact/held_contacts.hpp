@@ -67,6 +67,7 @@
 // contact whose softening hold ends within kShortSofteningHold steps is not held as softening
 // again for its next kSofteningBackoff visits (HeldContacts::softening_clock; it may still be held
 // with its points inside their envelope). The clock is state: a checkpoint keeps it.
+#include <cstddef>
 #include <cstdint>
 #include <unordered_map>
 #include <vector>
@@ -99,6 +100,13 @@ struct HeldSums {
   Real slope_n;
   Real shrink_s;
 };
+
+// Every line of a held contact's sums requested (the kernel reads them all).
+inline void prefetch_held_sums(const HeldSums* s) {
+  const char* p = reinterpret_cast<const char*>(s);
+  for (std::size_t k = 0; k < sizeof(HeldSums); k += 64) __builtin_prefetch(p + k);
+  __builtin_prefetch(p + sizeof(HeldSums) - 1);
+}
 
 // The checkpoint's columns of HeldSums (core/archive.hpp), in its order.
 template <class Record, class S>
