@@ -315,11 +315,6 @@ template <typename Law>
   if (t.broken > 0) cs.newly_broken_contact[static_cast<std::size_t>(c)] = 1;
 }
 
-// A held contact's sums, requested while the block forms its frames (as prefetch_points).
-[[gnu::always_inline]] inline void prefetch_held(const HeldContacts& h, Index c) {
-  prefetch_held_sums(&h.sums(c));
-}
-
 // A softening hold's clock (HeldContacts::softening_clock): a step held, and the hold's end, after
 // which a short hold makes its contact wait.
 [[gnu::always_inline]] inline void count_softening_step(HeldContacts& h, Index c) {
@@ -476,9 +471,9 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
           if (keep) continue;
           if (was_condensed) evaluate_contact<Law, true>(law, *previous, cs, cond, c);
           if (kHoldableLaw<Law> && cond->held.held[c]) {  // its frame comes with its sums
-            prefetch_held(cond->held, c);
-            // What the kernel gathers that the condensed kernel has not brought in: B's spin above
-            // all (a line of its own, anywhere in the bodies), and the stored frame.
+            // What the kernel gathers that the condensed kernel has not brought in, besides the
+            // sums (which the kernel loads itself): B's spin above all (a line of its own,
+            // anywhere in the bodies), and the stored frame.
             __builtin_prefetch(in.w + in.net.particle_b[c]);
             __builtin_prefetch(in.w + in.net.particle_a[c]);
             __builtin_prefetch(cs.normal.data() + c);

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 
 #include "rcdem/contact/contact_kinematics.hpp"
@@ -236,11 +238,6 @@ template <typename H>
 // Each array a little longer than a block: at 1 KB apart, every fourth array of a lane's column
 // shares its address modulo 4 KB, and the stores that fill a column stalled on it (4K aliasing).
 constexpr Index kLanes = HeldContacts::kBlock + 9;
-// The sums of the contact this many places on in the list are requested while one is gathered:
-// the block's listing requests every held contact's sums at once (contact_loop.hpp), more lines
-// than the core keeps in flight, and the first read of each line of the sums was where the kernel
-// waited most (bench/RESULTS.md).
-constexpr Index kAhead = 4;
 struct HeldLanes {
   Real no[3][kLanes], to[3][kLanes], wsum[3][kLanes], r0[3][kLanes], rc[3][kLanes], j[6][kLanes];
   Real h[kHeldSize][kLanes];
@@ -264,9 +261,6 @@ struct LaneSums {
   for (Index l = 0; l < count; ++l) {
     const Index c = list[l], a = in.particle_a[c], b = in.particle_b[c];
     const auto i = static_cast<std::size_t>(c);
-    if (l + kAhead < count)
-      prefetch_held_sums(reinterpret_cast<const HeldSums*>(in.held_sums) +
-                         (list[l + kAhead] - in.begin));
     for (int k = 0; k < 3; ++k) {
       g.no[k][l] = in.normal[3 * c + k];
       g.to[k][l] = in.tangent[3 * c + k];
@@ -402,6 +396,25 @@ RCDEM_SIMD_TARGET_AVX512 void held_block_avx512(const HeldInputs& in, const Inde
   held_block_lanes<false>(in, list, count, *lanes, out);
 }
 #endif
+
+// Every line of the listed contacts' sums loaded once, before the gather, by loads that depend on
+// nothing but the list: the core keeps many of them in flight, where the gather, whose 34 stores
+// a contact fill the store queue, waited on each contact's lines in turn (the first read of each
+// line held about half of the kernel's time), and software prefetches of the same lines, from the
+// block's listing and 4 contacts ahead in the gather, left most of that wait (bench/RESULTS.md).
+// The bits read are only kept from being optimised away.
+void load_held_sums(const HeldInputs& in, const Index* list, Index count) {
+  constexpr std::size_t kLast = sizeof(HeldSums) - sizeof(std::uint64_t);
+  std::uint64_t any = 0;
+  for (Index l = 0; l < count; ++l) {
+    const char* p = reinterpret_cast<const char*>(in.held_sums + kHeldSize * (list[l] - in.begin));
+    std::uint64_t word[6];  // bytes 0, 64, ..., 256 and the last 8: every line the 272 bytes touch
+    for (std::size_t k = 0; k < 5; ++k) std::memcpy(&word[k], p + 64 * k, sizeof(std::uint64_t));
+    std::memcpy(&word[5], p + kLast, sizeof(std::uint64_t));
+    for (const std::uint64_t w : word) any |= w;
+  }
+  asm volatile("" : : "r"(any));
+}
 
 }  // namespace
 
@@ -542,6 +555,7 @@ bool hold_contact(CondensedSums& sums, Index c, const ContactFrame& f, const Rea
 
 void evaluate_held_block(const HeldInputs& in, const Index* list, Index count, bool energy,
                          HeldOutputs& out) {
+  load_held_sums(in, list, count);
   HeldLanes lanes;
 #if RCDEM_SIMD_MULTIVERSION
   switch (simd_level()) {

@@ -101,13 +101,6 @@ struct HeldSums {
   Real shrink_s;
 };
 
-// Every line of a held contact's sums requested (the kernel reads them all).
-inline void prefetch_held_sums(const HeldSums* s) {
-  const char* p = reinterpret_cast<const char*>(s);
-  for (std::size_t k = 0; k < sizeof(HeldSums); k += 64) __builtin_prefetch(p + k);
-  __builtin_prefetch(p + sizeof(HeldSums) - 1);
-}
-
 // The checkpoint's columns of HeldSums (core/archive.hpp), in its order.
 template <class Record, class S>
 void archive_fields(Record& r, S& h) {
