@@ -2,7 +2,7 @@
 # Issue 43: the held contacts' kernel loading every line of its listed sums before the gather,
 # in place of software prefetches (the block listing's and 4 ahead in the gather), 1 thread, in
 # sequence (log: the .txt beside it). A = 53cf237's build (a worktree's rcdem_step_bench,
-# Release, portable), B = this commit's build/bench/rcdem_step_bench.
+# Release, portable), B = ceb49d4's build/bench/rcdem_step_bench.
 # Checkpoints: the tension cube at step 12,000 made by 93c10b9 (bench/data/
 # issue43_measures_2026-11-29_default.sh, same arithmetic); the AN4 NL-B beam at step 112,000
 # made by bd1a70a (format 8: every clock restarts at 0, the warm-up holds again). The figure
