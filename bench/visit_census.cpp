@@ -2,8 +2,8 @@
 // that neither the condensation nor the held sums evaluate (the next step visits their points),
 // by the kinds of their points: I inside the envelope (no damage, or damaged with room to its
 // caps), S softening along the normal envelope at its largest opening, B broken and open (no
-// force), K broken and carrying (closed: compression or shear), X the rest (at a cap, shear
-// damage read). With the held flags: how many of each kind the holds could take (held_contacts.hpp
+// force), C broken, closed and sticking (|fs| below mu_c (-fn): linear with kn, ks while it stays
+// so), K broken and carrying otherwise (sliding), X the rest (at a cap, shear damage read). With the held flags: how many of each kind the holds could take (held_contacts.hpp
 // holds I+B and S+B, the latter when the softening clock lets it).
 // Usage: rcdem_visit_census SCENARIO.toml STEPS CHECKPOINT
 #include <cmath>
@@ -20,10 +20,15 @@
 
 namespace {
 
+double g_mu = 0.5;  // the scenario's mu_c
 char point_kind(const rcdem::LocalPointRecord& p) {
   const rcdem::PlanePointState& s = p.history;
   const rcdem::LocalPointConstants& k = p.constants;
-  if (s.damage >= 1) return s.fn == 0 && s.fs.x == 0 && s.fs.y == 0 ? 'B' : 'K';
+  if (s.damage >= 1) {
+    if (s.fn == 0 && s.fs.x == 0 && s.fs.y == 0) return 'B';
+    const double cap = g_mu * -s.fn;
+    return s.fn < 0 && s.fs.x * s.fs.x + s.fs.y * s.fs.y < cap * cap ? 'C' : 'K';
+  }
   const bool shear_read = k.ks * k.ks * s.us_max_sq > k.c_max * k.c_max;
   if (s.damage > 0 && s.un == s.un_max && s.fn == (1 - s.damage) * k.fn_max && !shear_read)
     return 'S';
@@ -42,6 +47,7 @@ int main(int argc, char** argv) {
   rcdem::Progress::set_quiet_default(true);
   const long steps = std::atol(argv[2]);
   const rcdem::Scenario sc = rcdem::load_scenario(argv[1]);
+  g_mu = sc.contact.mu_c;
   rcdem::Simulation sim(sc, rcdem::build_specimen(sc));
   const auto header = rcdem::io::inspect_checkpoint(argv[3]);
   rcdem::io::restore_checkpoint(argv[3], rcdem::io::CheckpointParts{&sim}, header.scenario_hash);
@@ -63,7 +69,7 @@ int main(int argc, char** argv) {
     for (rcdem::Index m = net.point_begin[c]; m < net.point_begin[c + 1]; ++m, ++points_visited)
       present[static_cast<unsigned char>(point_kind(points[static_cast<std::size_t>(m)]))] = true;
     std::string key;
-    for (const char k : std::string("ISBKX")) if (present[static_cast<unsigned char>(k)]) key += k;
+    for (const char k : std::string("ISBCKX")) if (present[static_cast<unsigned char>(k)]) key += k;
     ++kinds[key];
     if (cond.held.softening_clock[i] < 0) ++waiting;
   }

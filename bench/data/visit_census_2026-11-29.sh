@@ -2,7 +2,7 @@
 # Issue 43: what the point loop still visits in the cracked cube and the cracked AN4 beam
 # (bench/visit_census.cpp), 20 steps from each checkpoint (the cube at step 12,000 made by
 # 93c10b9, the AN4 NL-B beam at step 112,000 made by bd1a70a), this tree's build. Log: the .txt
-# beside it.
+# beside it. Broken points carrying force: C closed and sticking, K the rest (sliding).
 cd "$(dirname "$0")/../.."
 date -u; nproc; grep -m1 "model name" /proc/cpuinfo; git log -1 --format=%h
 export OMP_NUM_THREADS=1
