@@ -405,13 +405,16 @@ RCDEM_SIMD_TARGET_AVX512 void held_block_avx512(const HeldInputs& in, const Inde
 // The bits read are only kept from being optimised away.
 void load_held_sums(const HeldInputs& in, const Index* list, Index count) {
   constexpr std::size_t kLast = sizeof(HeldSums) - sizeof(std::uint64_t);
-  std::uint64_t any = 0;
+  std::uint64_t any = 0, word;
   for (Index l = 0; l < count; ++l) {
+    // A word every 64 bytes and the last one: every line the sums touch, wherever they start.
     const char* p = reinterpret_cast<const char*>(in.held_sums + kHeldSize * (list[l] - in.begin));
-    std::uint64_t word[6];  // bytes 0, 64, ..., 256 and the last 8: every line the 272 bytes touch
-    for (std::size_t k = 0; k < 5; ++k) std::memcpy(&word[k], p + 64 * k, sizeof(std::uint64_t));
-    std::memcpy(&word[5], p + kLast, sizeof(std::uint64_t));
-    for (const std::uint64_t w : word) any |= w;
+    for (std::size_t k = 0; k < sizeof(HeldSums); k += 64) {
+      std::memcpy(&word, p + k, sizeof word);
+      any |= word;
+    }
+    std::memcpy(&word, p + kLast, sizeof word);
+    any |= word;
   }
   asm volatile("" : : "r"(any));
 }
@@ -428,26 +431,18 @@ void broken_point_sums(CondensedSums& sums, Index c, const Vec3& xa0,
       [&](Index m) { return broken[m - begin] == 0; });
 }
 
-namespace {
-
-// A broken point at its largest opening: under BL its force is kn min(0, un - M), M its largest
-// opening since it broke, and its shear cap (1 - D) c_max + mu max(0, -fn) is then 0, so while its
-// opening keeps growing it carries nothing, whatever the path.
 bool broken_and_open(const PlanePointState& s) {
   return s.damage >= 1 && s.fn == 0 && s.fs.x == 0 && s.fs.y == 0;
 }
 
-// A point softening along its normal envelope at its largest opening, with no shear damage read
-// (BilinearSoftening::update): while it keeps opening its force is fn = fn_max (u_nu - un) /
-// (u_nu - u_n0), slope -beta kn with beta = u_n0 / (u_nu - u_n0), and its shear cap (1 - D) c_max
-// shrinks by gamma = (c_max / ks) / (u_nu - u_n0) times ks per unit of opening. Tested without a
-// division first: most contacts that fail to be held fail here.
 bool on_normal_envelope(const LocalPointRecord& p) {
   const PlanePointState& st = p.history;
   const LocalPointConstants& k = p.constants;
   return st.damage > 0 && st.damage < 1 && st.un == st.un_max &&
          st.fn == (1 - st.damage) * k.fn_max && !(k.ks * k.ks * st.us_max_sq > k.c_max * k.c_max);
 }
+
+namespace {
 
 // Such a point's rooms (along n to a margin short of u_nu, D = 1; across as point_rooms'), beta
 // and gamma; false if its damage is not its opening's alone or a room is not positive.

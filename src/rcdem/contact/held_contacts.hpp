@@ -67,7 +67,6 @@
 // contact whose softening hold ends within kShortSofteningHold steps is not held as softening
 // again for its next kSofteningBackoff visits (HeldContacts::softening_clock; it may still be held
 // with its points inside their envelope). The clock is state: a checkpoint keeps it.
-#include <cstddef>
 #include <cstdint>
 #include <unordered_map>
 #include <vector>
@@ -179,6 +178,18 @@ struct HeldRows {
   std::vector<HeldEntryRow> entry;
   std::vector<SofteningClockRow> clock;
 };
+
+// A broken point at its largest opening: under BL its force is kn min(0, un - M), M its largest
+// opening since it broke, and its shear cap (1 - D) c_max + mu max(0, -fn) is then 0, so while its
+// opening keeps growing it carries nothing, whatever the path.
+bool broken_and_open(const PlanePointState& s);
+
+// A point softening along its normal envelope at its largest opening, with no shear damage read
+// (BilinearSoftening::update): while it keeps opening its force is fn = fn_max (u_nu - un) /
+// (u_nu - u_n0), slope -beta kn with beta = u_n0 / (u_nu - u_n0), and its shear cap (1 - D) c_max
+// shrinks by gamma = (c_max / ks) / (u_nu - u_n0) times ks per unit of opening. Tested without a
+// division first: most contacts that fail to be held fail here.
+bool on_normal_envelope(const LocalPointRecord& p);
 
 // Whether contact c, just evaluated through its points in the frame `f` at the poses `pose` (A = a,
 // B = b), is held from the next step: every point of it inside its room or broken and open (at its
