@@ -6,11 +6,17 @@
 // while it stays so), K broken and carrying otherwise (sliding), X the rest (at a cap, shear
 // damage read). Also the visited contacts whose softening clock makes them wait. The holds take
 // I+B and S+B (held_contacts.hpp).
-// Usage: rcdem_visit_census SCENARIO.toml STEPS CHECKPOINT
+// With FOLLOW > 0, the contacts that mix I and S points are then followed for FOLLOW steps: how
+// many steps each stays visited with every point of its kind at the start (I still I, S still S
+// and opening further), what a hold of mixed contacts could at most keep (its bound refuses some
+// of them sooner).
+// Usage: rcdem_visit_census SCENARIO.toml STEPS CHECKPOINT [FOLLOW]
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "rcdem/config/scenario.hpp"
 #include "rcdem/contact/held_contacts.hpp"
@@ -76,20 +82,89 @@ void census(const rcdem::Simulation& sim, rcdem::Real mu_c) {
                 100.0 * static_cast<double>(n) / static_cast<double>(visited));
 }
 
+
+// A followed contact: its points' kinds and openings at the last step, and how long it has lasted.
+struct Followed {
+  rcdem::Index contact;
+  std::string kinds;
+  std::vector<rcdem::Real> un;
+  long steps = 0;
+  bool alive = true;
+};
+
+bool visited(const rcdem::ConcreteContacts& concrete, rcdem::Index c) {
+  const auto& cond = concrete.condensation();
+  const auto i = static_cast<std::size_t>(c);
+  return !cond.held.held[i] && !cond.condensed[i];
+}
+
+// Whether f's points are still of their kinds, each S point opened further; updates its openings.
+bool still_mixed(Followed& f, const rcdem::LocalPointRecord* points, rcdem::Index begin,
+                 rcdem::Real mu_c) {
+  for (std::size_t j = 0; j < f.kinds.size(); ++j) {
+    const rcdem::LocalPointRecord& p = points[begin + static_cast<rcdem::Index>(j)];
+    if (point_kind(p, mu_c) != f.kinds[j]) return false;
+    if (f.kinds[j] == 'S' && !(p.history.un > f.un[j])) return false;
+    f.un[j] = p.history.un;
+  }
+  return true;
+}
+
+void follow_mixed(rcdem::Simulation& sim, rcdem::Real mu_c, long steps) {
+  const rcdem::ConcreteContacts& concrete = concrete_part(sim);
+  const auto& net = sim.specimen().contacts;
+  const auto& points = concrete.state().point.records;
+  std::vector<Followed> list;
+  for (rcdem::Index c = 0; c < net.contact_count(); ++c) {
+    if (!visited(concrete, c)) continue;
+    Followed f{c, "", {}};
+    for (rcdem::Index m = net.point_begin[c]; m < net.point_begin[c + 1]; ++m) {
+      f.kinds += point_kind(points[static_cast<std::size_t>(m)], mu_c);
+      f.un.push_back(points[static_cast<std::size_t>(m)].history.un);
+    }
+    const bool mixed = f.kinds.find('I') != std::string::npos &&
+                       f.kinds.find('S') != std::string::npos &&
+                       f.kinds.find_first_not_of("IS") == std::string::npos;
+    if (mixed) list.push_back(f);
+  }
+  for (long s = 0; s < steps; ++s) {
+    sim.step();
+    for (Followed& f : list) {
+      if (!f.alive) continue;
+      f.alive = visited(concrete, f.contact) &&
+                still_mixed(f, points.data(), net.point_begin[f.contact], mu_c);
+      f.steps += f.alive;
+    }
+  }
+  std::map<long, long> lasted;  // by the power of 2 at or below the steps lasted (0: none)
+  for (const Followed& f : list) {
+    long bin = 0;
+    while (f.steps >= 2 * std::max(bin, 1L) && bin < steps) bin = std::max(bin, 1L) * 2;
+    ++lasted[f.steps == 0 ? 0 : std::max(bin, 1L)];
+  }
+  std::printf("mixed I+S contacts followed %ld steps: %zu; steps each stayed so (from):\n", steps,
+              list.size());
+  for (const auto& [bin, n] : lasted)
+    std::printf("  %5ld  %6ld  %5.1f%%\n", bin, n,
+                100.0 * static_cast<double>(n) / static_cast<double>(list.size()));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 4) {
-    std::fprintf(stderr, "usage: rcdem_visit_census SCENARIO.toml STEPS CHECKPOINT\n");
+  if (argc != 4 && argc != 5) {
+    std::fprintf(stderr, "usage: rcdem_visit_census SCENARIO.toml STEPS CHECKPOINT [FOLLOW]\n");
     return 1;
   }
-  long steps = -1;
+  long steps = -1, follow = 0;
   try {
     steps = std::stol(argv[2]);
+    if (argc == 5) follow = std::stol(argv[4]);
   } catch (const std::exception&) {
+    steps = -1;
   }
-  if (steps < 0) {
-    std::fprintf(stderr, "rcdem_visit_census: STEPS must be a whole number >= 0\n");
+  if (steps < 0 || follow < 0) {
+    std::fprintf(stderr, "rcdem_visit_census: STEPS and FOLLOW must be whole numbers >= 0\n");
     return 1;
   }
   rcdem::Progress::set_quiet_default(true);
@@ -100,6 +175,7 @@ int main(int argc, char** argv) {
     rcdem::io::restore_checkpoint(argv[3], rcdem::io::CheckpointParts{&sim}, header.scenario_hash);
     for (long s = 0; s < steps; ++s) sim.step();
     census(sim, sc.contact.mu_c);
+    if (follow > 0) follow_mixed(sim, sc.contact.mu_c, follow);
   } catch (const rcdem::Error& e) {
     std::fprintf(stderr, "rcdem_visit_census: %s\n", e.what());
     return 1;

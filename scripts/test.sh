@@ -20,7 +20,7 @@ fi
 # Minutes each under the sanitizers, seconds in the first pass.
 # The held contacts' and the point counters' runs through a peak keep one test each here (their
 # strain energy, the crack record), the thread tuner's bits the first pass.
-LONG='StrainGauges.ElasticModulusDoesNotDependOnCubeSize|ElasticCondensation.(Tension|Compression)RunMatchesThePointLoopThroughDamage|CriticalTimeStep.(ReinforcedCube|Stable|Cundall)|ExponentialSoftening.BoxInTension|Checkpoint.StateDoesNotDependOnThreadCount|BarStatics.Cantilever|HeldContacts.(SameResultsAsVisiting|SameBitsForAnyThreadCount)|PointCounters.(StrainEnergyKeptByTheStep|KeptByTheStepEqualACount)|ThreadCountTuner.ACountThatChangesBetweenSteps|ScaleInvariance.CoarserParticles'
+LONG='StrainGauges.ElasticModulusDoesNotDependOnCubeSize|ElasticCondensation.(Tension|Compression)RunMatchesThePointLoopThroughDamage|CriticalTimeStep.(ReinforcedCube|Stable|Cundall)|ExponentialSoftening.BoxInTension|Checkpoint.StateDoesNotDependOnThreadCount|BarStatics.Cantilever|HeldContacts.(SameResultsAsVisiting|SameBitsForAnyThreadCount|AHeldContactsForceMoments)|PointCounters.(StrainEnergyKeptByTheStep|KeptByTheStepEqualACount)|ThreadCountTuner.ACountThatChangesBetweenSteps|ScaleInvariance.CoarserParticles'
 cmake --preset asan-ubsan -DRCDEM_WERROR=ON >/dev/null
 cmake --build build-asan -j "$(nproc)" --target rcdem_unit_tests rcdem_verification_tests
 OMP_WAIT_POLICY=${OMP_WAIT_POLICY:-passive} ctest --test-dir build-asan --output-on-failure \

@@ -2,15 +2,18 @@
 // a box pulled apart through its peak and softening gives the same plate force, damage and
 // energies with and without holding, to rounding; the energy of the held contacts from their sums
 // equals their points' once caught up; reads and checkpoints change nothing; the energy kept by
-// the step equals the one summed after it to the bit; and the held run is the same bits at 1 and
-// 2 threads and after a restart.
+// the step equals the one summed after it to the bit; each held contact's force, moments and
+// dissipation are its points'; and the held run is the same bits at 1 and 2 threads and after a
+// restart.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <variant>
 #include <vector>
@@ -276,6 +279,88 @@ TEST(HeldContacts, BrokenAndSofteningPointsOfAHeldContactKeepOpening) {
   }
   EXPECT_GT(broken, 10000) << "the test must meet broken points of held contacts";
   EXPECT_GT(softening, 1000) << "... and softening points of held contacts";
+}
+
+// A held contact's force, moments and the energy its softening points dissipate, from its sums,
+// are its points' to rounding: read at every step (reads change nothing, above), each contact held
+// through the step (by the same entry) has the force of its points caught up, sum phi_J with
+// phi_J = -fn n + fs in its stored frame, their moment sum rho_J x phi_J about A's centre at the
+// poses of the evaluation (rho_J = u0 / 2 + (R_A + R_B) / 2 (p_J0 - x_A0), u0 = dx - R_B r0:
+// contact_loop.hpp), and dissipates what the law's trapezoid gives each point from the step before,
+// (fn_old + fn) / 2 (fn_old + kn (un - un_old) - fn) / kn (SPEC 11). Held contacts with inside
+// points and with softening points are met.
+TEST(HeldContacts, AHeldContactsForceMomentsAndDissipationAreItsPoints) {
+  const Scenario sc = pulled_box(true);
+  Simulation sim(sc, build_specimen(sc));
+  const ConcreteContacts* concrete = concrete_part(sim);
+  ASSERT_NE(concrete, nullptr);
+  const ContactNetwork& net = sim.specimen().contacts;
+  const auto points_n = static_cast<std::size_t>(net.point_count());
+  std::vector<Real> last_un(points_n, 0.0), last_fn(points_n, 0.0);
+  constexpr Real kNone = std::numeric_limits<Real>::quiet_NaN();
+  std::vector<std::array<Real, 3>> entry(static_cast<std::size_t>(net.contact_count()),
+                                         {kNone, kNone, kNone});
+  Index checked = 0, dissipating = 0;
+  for (int k = 1; k <= kSteps; ++k) {
+    // The poses the step evaluates the contacts at.
+    const std::vector<Vec3> x = sim.bodies().position;
+    const std::vector<Quat> q = sim.bodies().orientation;
+    sim.step();
+    const HeldContacts& h = concrete->condensation().held;
+    const ContactState& cs = sim.contacts();  // caught up
+    const auto& points = cs.point.records;
+    const std::vector<Vec3>& x0 = sim.bodies().position0;
+    for (Index c = 0; c < net.contact_count(); ++c) {
+      std::array<Real, 3>& e = entry[static_cast<std::size_t>(c)];
+      const std::array<Real, 3> last = e;
+      e = {kNone, kNone, kNone};
+      if (!h.held[static_cast<std::size_t>(c)]) continue;
+      e = {h.sums(c).disp0[0], h.sums(c).disp0[1], h.sums(c).disp0[2]};
+      if (e != last) continue;  // not held through the step
+      const Vec3 n = cs.normal[c], t1 = cs.tangent[c], t2 = n.cross(t1);
+      const auto a = static_cast<std::size_t>(net.particle_a[c]),
+                 b = static_cast<std::size_t>(net.particle_b[c]);
+      const Eigen::Matrix3d ra = q[a].toRotationMatrix(), rb = q[b].toRotationMatrix();
+      const Vec3 dx = x[b] - x[a], u0 = dx - rb * (x0[b] - x0[a]);
+      Vec3 force = Vec3::Zero(), moment = Vec3::Zero();
+      Real scale = 0, m_scale = 0, dissipated = 0, d_scale = 0;
+      for (Index m = net.point_begin[c]; m < net.point_begin[c + 1]; ++m) {
+        const auto i = static_cast<std::size_t>(m);
+        const PlanePointState& p = points[i].history;
+        const Real kn = points[i].constants.kn;
+        const Vec3 phi = -p.fn * n + p.fs.x * t1 + p.fs.y * t2;
+        const Vec3 r = Vec3(points[i].x0, points[i].y0, points[i].z0) - x0[a];
+        const Vec3 rho = 0.5 * u0 + 0.5 * (ra + rb) * r;
+        force += phi;
+        moment += rho.cross(phi);
+        scale += phi.norm();
+        m_scale += rho.norm() * phi.norm();
+        const Real mean = 0.5 * (last_fn[i] + p.fn);
+        const Real change = (last_fn[i] + kn * (p.un - last_un[i]) - p.fn) / kn;
+        dissipated += mean * change;
+        // What rounding in the difference of its terms can leave.
+        d_scale += std::abs(mean) * (std::abs(p.un) + std::abs(last_un[i]) +
+                                     (std::abs(last_fn[i]) + std::abs(p.fn)) / kn);
+      }
+      ASSERT_LE((force - cs.force_b[c]).norm(), 1e-9 * scale) << "step " << k << ", contact " << c;
+      ASSERT_LE((-moment - cs.torque_a[c]).norm(), 1e-9 * m_scale) << "step " << k << ", " << c;
+      ASSERT_LE((moment - dx.cross(force) - cs.torque_b[c]).norm(),
+                1e-9 * (m_scale + dx.norm() * scale))
+          << "step " << k << ", contact " << c;
+      ASSERT_NEAR(cs.dissipated_damage[c], dissipated, 1e-9 * d_scale + 1e-30)
+          << "step " << k << ", contact " << c;
+      ++checked;
+      dissipating += cs.dissipated_damage[c] > 0;
+    }
+    for (std::size_t i = 0; i < points_n; ++i) {
+      last_un[i] = points[i].history.un;
+      last_fn[i] = points[i].history.fn;
+    }
+  }
+  EXPECT_GT(checked, 100000) << "the test must meet held contacts";
+  EXPECT_GT(dissipating, 1000) << "... and held contacts whose softening points dissipate";
+  std::printf("held contacts checked %lld, dissipating %lld\n", static_cast<long long>(checked),
+              static_cast<long long>(dissipating));
 }
 
 // With holding, the energy a history row reads is kept by the step (evaluate_held), and it is the
