@@ -51,19 +51,26 @@ const rcdem::ConcreteContacts& concrete_part(const rcdem::Simulation& sim) {
   throw rcdem::Error("the scenario has no concrete contacts");
 }
 
+// Whether the next step visits contact c's points: neither held nor condensed.
+bool visited(const rcdem::ConcreteContacts& concrete, rcdem::Index c) {
+  const auto& cond = concrete.condensation();
+  const auto i = static_cast<std::size_t>(c);
+  return !cond.held.held[i] && !cond.condensed[i];
+}
+
 void census(const rcdem::Simulation& sim, rcdem::Real mu_c) {
   const rcdem::ConcreteContacts& concrete = concrete_part(sim);
   const auto& cond = concrete.condensation();
   const auto& net = sim.specimen().contacts;
   const auto& points = concrete.state().point.records;
   std::map<std::string, long> kinds;
-  long visited = 0, held = 0, condensed = 0, waiting = 0, points_visited = 0;
+  long visits = 0, held = 0, condensed = 0, waiting = 0, points_visited = 0;
   for (rcdem::Index c = 0; c < net.contact_count(); ++c) {
     const auto i = static_cast<std::size_t>(c);
     held += cond.held.held[i];
     condensed += cond.condensed[i] && !cond.held.held[i];
-    if (cond.held.held[i] || cond.condensed[i]) continue;
-    ++visited;
+    if (!visited(concrete, c)) continue;
+    ++visits;
     std::string present;
     for (rcdem::Index m = net.point_begin[c]; m < net.point_begin[c + 1]; ++m, ++points_visited)
       present += point_kind(points[static_cast<std::size_t>(m)], mu_c);
@@ -76,12 +83,11 @@ void census(const rcdem::Simulation& sim, rcdem::Real mu_c) {
   std::printf(
       "contacts %ld: condensed %ld, held %ld, visited %ld (%ld points), softening clock "
       "waiting %ld\n",
-      static_cast<long>(net.contact_count()), condensed, held, visited, points_visited, waiting);
+      static_cast<long>(net.contact_count()), condensed, held, visits, points_visited, waiting);
   for (const auto& [key, n] : kinds)
     std::printf("  %-6s %6ld  %5.1f%%\n", key.c_str(), n,
-                100.0 * static_cast<double>(n) / static_cast<double>(visited));
+                100.0 * static_cast<double>(n) / static_cast<double>(visits));
 }
-
 
 // A followed contact: its points' kinds and openings at the last step, and how long it has lasted.
 struct Followed {
@@ -91,12 +97,6 @@ struct Followed {
   long steps = 0;
   bool alive = true;
 };
-
-bool visited(const rcdem::ConcreteContacts& concrete, rcdem::Index c) {
-  const auto& cond = concrete.condensation();
-  const auto i = static_cast<std::size_t>(c);
-  return !cond.held.held[i] && !cond.condensed[i];
-}
 
 // Whether f's points are still of their kinds, each S point opened further; updates its openings.
 bool still_mixed(Followed& f, const rcdem::LocalPointRecord* points, rcdem::Index begin,
