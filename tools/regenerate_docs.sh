@@ -58,6 +58,8 @@ JOBS=(
   "study_seed1|docs/case-study.md|the full-size study, every case on packing 1"
   "study_more|docs/case-study.md|the full-size study, nine cases on packings 2 and 3"
   "size_h400|docs/size-series.md|the 400 mm reinforced beams at 0.262%, quick, packings 1-3 (0.131% and 0.188%: size_transition)"
+  "full_rate|docs/case-study.md|the full-size halving test: AN2 NL-B at 0.0125, AN4 NL-B at 0.025 m/s, against study_seed1's runs"
+  "full_rounding|docs/case-study.md|AN4 NL-B at the study's rate with its time step changed in the last bits, against study_seed1's"
 )
 
 job_names() { for j in "${JOBS[@]}"; do echo "${j%%|*}"; done; }
@@ -271,6 +273,31 @@ report_size_h400() {
   local t=$OUT/size_transition
   $PY tools/size_series_report.py -o "$OUT/size_h400/report" "$OUT/size_quick_plain/study" \
     "$t/transition" "$t/h026" "$OUT/size_h400/h400_026"
+}
+
+# SPEC 6's halving test of the full-size study's rates (docs/case-study.md, "Full size"): each
+# beam's other rate against the study's packing-1 run of the same scenario (the rate/ scenarios
+# are the study's but for the velocity).
+job_full_rate() {
+  local d=examples/three_point_bending/rate s=$OUT/study_seed1/seed1/cases
+  [ -f "$OUT/study_seed1/DONE" ] || { echo "full_rate needs the job study_seed1" >&2; return 1; }
+  run "$1/AN2_NL-B_v0.0125" $d/AN2_NL-B_assembled_v0.0125.toml
+  run "$1/AN4_NL-B_v0.025" $d/AN4_NL-B_assembled_v0.025.toml
+  $PY tools/compare_runs.py "$1/AN2_NL-B_v0.0125" "$s/AN2_NL-B_seed1" --at 0.1,0.2,0.5,1,1.5,1.9 \
+    --markdown > "$1/AN2.md"
+  $PY tools/compare_runs.py "$s/AN4_NL-B_seed1" "$1/AN4_NL-B_v0.025" \
+    --at 0.1,0.2,0.5,1,1.5,1.8,1.9,2 --markdown > "$1/AN4.md"
+}
+
+# AN4 at the study's rate with its time step changed in the last bits: what rounding alone moves,
+# to tell from the rate's effect (job full_rate).
+job_full_rounding() {
+  local s=$OUT/study_seed1/seed1/cases
+  [ -f "$OUT/study_seed1/DONE" ] || { echo "full_rounding needs the job study_seed1" >&2; return 1; }
+  run "$1/AN4_NL-B_v0.0125_perturbed" examples/three_point_bending/rate/AN4_NL-B_assembled_v0.0125.toml \
+    --set solver.dt_safety=0.69999993
+  $PY tools/compare_runs.py "$s/AN4_NL-B_seed1" "$1/AN4_NL-B_v0.0125_perturbed" \
+    --at 0.1,0.2,0.5,1,1.5,1.8,1.9,2 --markdown > "$1/AN4.md"
 }
 
 # One job: claimed by making OUT/JOB.claim (atomic), done when its function returns.
