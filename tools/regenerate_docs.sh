@@ -64,6 +64,12 @@ JOBS=(
 
 job_names() { for j in "${JOBS[@]}"; do echo "${j%%|*}"; done; }
 
+# A job that reads another's outputs fails, naming it, until that one is done (a later call
+# runs it again).
+needs_job() {  # needs_job JOB NEEDED
+  [ -f "$OUT/$2/DONE" ] || { echo "$1 needs the job $2" >&2; return 1; }
+}
+
 # A run of rcdem, resumed if a checkpoint of it is there.
 run() {  # run DIR SCENARIO [ARG...]
   local dir=$1
@@ -127,7 +133,7 @@ job_cal160_half() {
 # The continuum needs no rcdem, only the elastic pair it measured (job elastic_pair, packing 1).
 job_continuum_k0() {
   local moduli="$OUT/elastic_pair/seed1.moduli.txt"
-  [ -f "$OUT/elastic_pair/DONE" ] || { echo "continuum_k0 needs the job elastic_pair" >&2; return 1; }
+  needs_job continuum_k0 elastic_pair
   local e nu
   e=$(sed -n 's/^interior gauge: E = \([0-9.]*\) GPa, nu = .*/\1e9/p' "$moduli")
   nu=$(sed -n 's/^interior gauge: E = .*, nu = \([0-9.]*\)$/\1/p' "$moduli")
@@ -280,7 +286,7 @@ report_size_h400() {
 # are the study's but for the velocity).
 job_full_rate() {
   local d=examples/three_point_bending/rate s=$OUT/study_seed1/seed1/cases
-  [ -f "$OUT/study_seed1/DONE" ] || { echo "full_rate needs the job study_seed1" >&2; return 1; }
+  needs_job full_rate study_seed1
   run "$1/AN2_NL-B_v0.0125" $d/AN2_NL-B_assembled_v0.0125.toml
   run "$1/AN4_NL-B_v0.025" $d/AN4_NL-B_assembled_v0.025.toml
   $PY tools/compare_runs.py "$1/AN2_NL-B_v0.0125" "$s/AN2_NL-B_seed1" --at 0.1,0.2,0.5,1,1.5,1.9 \
@@ -293,8 +299,9 @@ job_full_rate() {
 # to tell from the rate's effect (job full_rate).
 job_full_rounding() {
   local s=$OUT/study_seed1/seed1/cases
-  [ -f "$OUT/study_seed1/DONE" ] || { echo "full_rounding needs the job study_seed1" >&2; return 1; }
-  run "$1/AN4_NL-B_v0.0125_perturbed" examples/three_point_bending/rate/AN4_NL-B_assembled_v0.0125.toml \
+  needs_job full_rounding study_seed1
+  run "$1/AN4_NL-B_v0.0125_perturbed" \
+    examples/three_point_bending/rate/AN4_NL-B_assembled_v0.0125.toml \
     --set solver.dt_safety=0.69999993
   $PY tools/compare_runs.py "$s/AN4_NL-B_seed1" "$1/AN4_NL-B_v0.0125_perturbed" \
     --at 0.1,0.2,0.5,1,1.5,1.8,1.9,2 --markdown > "$1/AN4.md"
