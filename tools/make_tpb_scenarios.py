@@ -26,9 +26,9 @@ MODELS = {  # name: (bars, diameter [m], f_y [Pa], P_exp [N]) from Table 3
 # step). Loading speeds: the rate study of docs/case-study.md. Full size also stops 1 mm past the
 # peak (issue 5's "peak plus a defined post-peak"): it cuts only a plateau after the peak (AN1
 # then stops at 1.17 mm, AN2 at 1.6 mm), never a load that is still rising (AN3, AN4 run to 2 mm).
-# Full size at the rates that passed SPEC 6's half-rate check (issue 26, docs/case-study.md,
-# "Quasi-static rates"): 0.025 m/s (AN2 NL-B: 0.025 vs 0.0125 m/s moved its peak 0.3%); AN4 at
-# 0.0125 m/s, the slowest measured (0.025 vs 0.0125 m/s moved its load at 2 mm by 12%).
+# Full size at the rates of SPEC 6's half-rate check (docs/case-study.md, "Full size: the study's
+# rates against the other"): 0.025 m/s (AN2 NL-B: 0.025 vs 0.0125 m/s moved the plate's peak 1.5%,
+# the supports' 0.4%); AN4 at 0.0125 m/s (0.025 m/s moved both peaks 7%).
 FULL = dict(velocity=-0.025, by_model={"AN4": -0.0125}, ramp=4.0e-3, stop=0.002, post_peak=0.001, snapshots=10, coarsen=None, sub="",
             contact="calibrated_contact.toml")
 # Quick (2026-11-27, docs/case-study.md "The quick study's rate"): 0.0125 m/s, where halving the

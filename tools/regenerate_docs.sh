@@ -10,9 +10,10 @@
 # usage: tools/regenerate_docs.sh [--list] [-j WORKERS] [JOB ...]
 #        tools/regenerate_docs.sh --save
 #   JOB         run only these (default: every job, in the order below: cheap ones first)
-#   -j WORKERS  jobs at a time (default: nproc); a job's `rcdem run`s take one thread, a study's
-#               runs the study's threads (nproc for -j 1; their thread tuner gives way to the
-#               other jobs: `rcdem study` has no --threads). Threads do not change the bits.
+#   -j WORKERS  jobs at a time (default: nproc); a job's `rcdem run`s take one thread (nproc
+#               for -j 1), a study's runs the study's threads (nproc for -j 1; their thread
+#               tuner gives way to the other jobs: `rcdem study` has no --threads). Threads do
+#               not change the bits.
 #   --list      the jobs, one a line, with what each regenerates
 #   --save      keep the finished runs of the studies in OUT, one archive a run, in
 #               KEEP/JOB/STUDY/RUN.tar.xz (default KEEP docs/figures/regen; tools/study_archive.py
@@ -60,6 +61,7 @@ JOBS=(
   "size_h400|docs/size-series.md|the 400 mm reinforced beams at 0.262%, quick, packings 1-3 (0.131% and 0.188%: size_transition)"
   "full_rate|docs/case-study.md|the full-size halving test: AN2 NL-B at 0.0125, AN4 NL-B at 0.025 m/s, against study_seed1's runs"
   "full_rounding|docs/case-study.md|AN4 NL-B at the study's rate with its time step changed in the last bits, against study_seed1's"
+  "full_half|docs/case-study.md|AN4 NL-B at half the study's rate (0.00625 m/s), against study_seed1's"
 )
 
 job_names() { for j in "${JOBS[@]}"; do echo "${j%%|*}"; done; }
@@ -78,7 +80,7 @@ run() {  # run DIR SCENARIO [ARG...]
   if ls "$dir"/checkpoint_* > /dev/null 2>&1; then
     "$RCDEM" -q run --resume "$dir"
   else
-    "$RCDEM" -q run "$@" --threads 1 -o "$dir" --force
+    "$RCDEM" -q run "$@" --threads "$run_threads" -o "$dir" --force
   fi
 }
 
@@ -307,6 +309,17 @@ job_full_rounding() {
     --at 0.1,0.2,0.5,1,1.5,1.8,1.9,2 --markdown > "$1/AN4.md"
 }
 
+# SPEC 6's halving test of the study's own rate for AN4 (0.0125 m/s, which job full_rate shows
+# AN4 needs): half of it against the study's packing-1 run.
+job_full_half() {
+  local s=$OUT/study_seed1/seed1/cases
+  needs_job full_half study_seed1
+  run "$1/AN4_NL-B_v0.00625" examples/three_point_bending/rate/AN4_NL-B_assembled_v0.0125.toml \
+    --set plates.load.velocity=-0.00625
+  $PY tools/compare_runs.py "$1/AN4_NL-B_v0.00625" "$s/AN4_NL-B_seed1" \
+    --at 0.1,0.2,0.5,1,1.5,1.8,1.9,2 --markdown > "$1/AN4.md"
+}
+
 # One job: claimed by making OUT/JOB.claim (atomic), done when its function returns.
 do_job() {
   local name=$1 dir="$OUT/$1"
@@ -412,6 +425,8 @@ main() {
     esac
   done
   [ ${#selected[@]} -gt 0 ] || mapfile -t selected < <(job_names)
+  run_threads=1
+  [ "$workers" = 1 ] && run_threads=$NPROC
 
   mkdir -p "$OUT"
   version=$("$RCDEM" --version)
