@@ -283,41 +283,41 @@ report_size_h400() {
     "$t/transition" "$t/h026" "$OUT/size_h400/h400_026"
 }
 
+# The full-size halving tests compare with the study's own packing-1 runs (job study_seed1); the
+# rate/ scenarios are the study's but for the velocity. AN4's curves are read up to its 2 mm stop.
+FULL_SEED1=$OUT/study_seed1/seed1/cases
+FULL_RATE=examples/three_point_bending/rate
+compare_an4() {  # compare_an4 SLOWER FASTER MARKDOWN
+  $PY tools/compare_runs.py "$1" "$2" --at 0.1,0.2,0.5,1,1.5,1.8,1.9,2 --markdown > "$3"
+}
+
 # SPEC 6's halving test of the full-size study's rates (docs/case-study.md, "Full size"): each
-# beam's other rate against the study's packing-1 run of the same scenario (the rate/ scenarios
-# are the study's but for the velocity).
+# beam's other rate against the study's run.
 job_full_rate() {
-  local d=examples/three_point_bending/rate s=$OUT/study_seed1/seed1/cases
   needs_job full_rate study_seed1
-  run "$1/AN2_NL-B_v0.0125" $d/AN2_NL-B_assembled_v0.0125.toml
-  run "$1/AN4_NL-B_v0.025" $d/AN4_NL-B_assembled_v0.025.toml
-  $PY tools/compare_runs.py "$1/AN2_NL-B_v0.0125" "$s/AN2_NL-B_seed1" --at 0.1,0.2,0.5,1,1.5,1.9 \
-    --markdown > "$1/AN2.md"
-  $PY tools/compare_runs.py "$s/AN4_NL-B_seed1" "$1/AN4_NL-B_v0.025" \
-    --at 0.1,0.2,0.5,1,1.5,1.8,1.9,2 --markdown > "$1/AN4.md"
+  run "$1/AN2_NL-B_v0.0125" $FULL_RATE/AN2_NL-B_assembled_v0.0125.toml
+  run "$1/AN4_NL-B_v0.025" $FULL_RATE/AN4_NL-B_assembled_v0.025.toml
+  $PY tools/compare_runs.py "$1/AN2_NL-B_v0.0125" "$FULL_SEED1/AN2_NL-B_seed1" \
+    --at 0.1,0.2,0.5,1,1.5,1.9 --markdown > "$1/AN2.md"
+  compare_an4 "$FULL_SEED1/AN4_NL-B_seed1" "$1/AN4_NL-B_v0.025" "$1/AN4.md"
 }
 
 # AN4 at the study's rate with its time step changed in the last bits: what rounding alone moves,
 # to tell from the rate's effect (job full_rate).
 job_full_rounding() {
-  local s=$OUT/study_seed1/seed1/cases
   needs_job full_rounding study_seed1
-  run "$1/AN4_NL-B_v0.0125_perturbed" \
-    examples/three_point_bending/rate/AN4_NL-B_assembled_v0.0125.toml \
+  run "$1/AN4_NL-B_v0.0125_perturbed" $FULL_RATE/AN4_NL-B_assembled_v0.0125.toml \
     --set solver.dt_safety=0.69999993
-  $PY tools/compare_runs.py "$s/AN4_NL-B_seed1" "$1/AN4_NL-B_v0.0125_perturbed" \
-    --at 0.1,0.2,0.5,1,1.5,1.8,1.9,2 --markdown > "$1/AN4.md"
+  compare_an4 "$FULL_SEED1/AN4_NL-B_seed1" "$1/AN4_NL-B_v0.0125_perturbed" "$1/AN4.md"
 }
 
 # SPEC 6's halving test of the study's own rate for AN4 (0.0125 m/s, which job full_rate shows
-# AN4 needs): half of it against the study's packing-1 run.
+# AN4 needs): half of it against the study's run.
 job_full_half() {
-  local s=$OUT/study_seed1/seed1/cases
   needs_job full_half study_seed1
-  run "$1/AN4_NL-B_v0.00625" examples/three_point_bending/rate/AN4_NL-B_assembled_v0.0125.toml \
+  run "$1/AN4_NL-B_v0.00625" $FULL_RATE/AN4_NL-B_assembled_v0.0125.toml \
     --set plates.load.velocity=-0.00625
-  $PY tools/compare_runs.py "$1/AN4_NL-B_v0.00625" "$s/AN4_NL-B_seed1" \
-    --at 0.1,0.2,0.5,1,1.5,1.8,1.9,2 --markdown > "$1/AN4.md"
+  compare_an4 "$1/AN4_NL-B_v0.00625" "$FULL_SEED1/AN4_NL-B_seed1" "$1/AN4.md"
 }
 
 # One job: claimed by making OUT/JOB.claim (atomic), done when its function returns.
