@@ -25,27 +25,31 @@
 // time over the timed steps, all threads, idle spinning included: on a shared machine the steadier
 // figure at 1 thread; both of the fastest repetition), repeat_seconds (every repetition's),
 // strain_energy_seconds (Simulation::strain_energy() once after the steps, as a run's history row
-// calls it: fastest of 3) and a second line starting
+// calls it: fastest of 3), scattered_lines and scattered_bytes (ByteCount::scattered_lines: the
+// held contacts' sums and visited points, which bench/step_floor.py prices at random lines' cost)
+// and a second line starting
 // "# bytes:" with the breakdown of bytes_per_step (see bytes_per_step() below for the model and
 // every term).
+#include <unistd.h>
+
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <ctime>
-#include <algorithm>
 #include <exception>
-#include <stdexcept>
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
-#include <unistd.h>
-
-#include "rcdem/core/thread_count_tuner.hpp"
-#include "rcdem/core/thread_waiting.hpp"
 #include "rcdem/config/scenario.hpp"
 #include "rcdem/core/error.hpp"
+#include "rcdem/core/huge_pages.hpp"
 #include "rcdem/core/progress.hpp"
+#include "rcdem/core/thread_count_tuner.hpp"
+#include "rcdem/core/thread_waiting.hpp"
 #include "rcdem/run/checkpoint.hpp"
 #include "rcdem/solver/simulation.hpp"
 #include "rcdem/specimens/specimen.hpp"
@@ -134,6 +138,17 @@ struct ByteCount {
     return per_interface_contact * interface_contacts + per_local_point * interface_points;
   }
   double nodes_total() const { return per_node * nodes; }
+  // What no hardware prefetcher follows (bench/step_floor.py): the held contacts' sums, scattered
+  // through their blocks, and the visited points' records, read where their contacts lie among
+  // condensed ones; their lines, and the bytes of the count above they stand for.
+  double held_sum_lines = 0, point_lines = 0;
+  double scattered_lines() const {
+    return held_sum_lines * held_contacts + point_lines * (visited_points + interface_points);
+  }
+  double scattered_bytes() const {
+    return static_cast<double>(sizeof(rcdem::HeldSums)) * held_contacts +
+           64.0 * point_lines * (visited_points + interface_points);
+  }
   double total() const {
     return points_total() + contacts_total() + bodies_total() + plates_total() +
            interfaces_total() + nodes_total();
@@ -181,6 +196,12 @@ ByteCount count_bytes(const rcdem::Simulation& sim) {
                + (NR + NF + 2 * 2 * 2 * V)            // gather
                + (NC + NS + R);                       // energy ledger
 
+  // A block's sums are a vector of HeldSums (malloc: 16-byte aligned), so a record starts at
+  // any 16-byte offset in a line and touches every line it reaches from the worst one.
+  constexpr double kLine = 64, kMallocAlign = 16;
+  constexpr double kHeldAlign = alignof(rcdem::HeldSums) >= 64 ? 64 : kMallocAlign;
+  b.held_sum_lines = std::ceil((kLine - kHeldAlign + sizeof(rcdem::HeldSums)) / kLine);
+  b.point_lines = sizeof(rcdem::LocalPointRecord) / kLine;  // aligned to lines (alignas(64))
   const rcdem::Specimen& sp = sim.specimen();
   b.local_points = static_cast<double>(sp.contacts.point_count());
   b.contacts = static_cast<double>(sp.contacts.contact_count());
@@ -316,12 +337,14 @@ void time_and_report(rcdem::Simulation& sim, const BenchArgs& a, double setup_s,
       "seconds=%.4f steps_per_s=%.3f particle_steps_per_s=%.4g contact_steps_per_s=%.4g "
       "local_point_steps_per_s=%.4g bytes_per_step=%.0f bytes_per_local_point=%.1f "
       "achieved_GBps=%.3f setup_seconds=%.2f condensed_contacts=%.0f held_contacts=%ld "
-      "cpu_seconds=%.4f repeat_seconds=%s strain_energy_seconds=%.5f end_strain_energy_J=%.17g\n",
+      "cpu_seconds=%.4f repeat_seconds=%s strain_energy_seconds=%.5f end_strain_energy_J=%.17g "
+      "scattered_lines=%.0f scattered_bytes=%.0f\n",
       a.path.c_str(), used.tuned ? "auto" : std::to_string(used.max).c_str(), used.mean, used.last,
       static_cast<long>(used.changes), bodies, contacts, points, a.steps, seconds, rate,
       rate * bodies, rate * contacts, rate * points, bytes, bytes / points, bytes * rate * 1e-9,
       setup_s, bc.condensed_contacts, static_cast<long>(sim.held_contacts()), cpu_seconds,
-      repeat_seconds.c_str(), strain_energy_s, strain_energy);
+      repeat_seconds.c_str(), strain_energy_s, strain_energy, bc.scattered_lines(),
+      bc.scattered_bytes());
   std::printf(
       "# bytes: per_local_point=%.0f x %.0f visited = %.4g; per_contact=%.0f x %.0f + "
       "condensed %.0f x %.0f + held %.0f x %.0f = %.4g; "
@@ -342,9 +365,9 @@ void time_and_report(rcdem::Simulation& sim, const BenchArgs& a, double setup_s,
 void time_each_thread_count(rcdem::Simulation& sim, const BenchArgs& a, double setup_s) {
   namespace fs = std::filesystem;
   const bool own_dir = a.save_dir.empty();
-  const fs::path dir = own_dir ? fs::temp_directory_path() /
-                                     ("rcdem_step_bench_" + std::to_string(::getpid()))
-                               : fs::path(a.save_dir);
+  const fs::path dir =
+      own_dir ? fs::temp_directory_path() / ("rcdem_step_bench_" + std::to_string(::getpid()))
+              : fs::path(a.save_dir);
   fs::create_directories(dir);
   const fs::path state = rcdem::io::write_checkpoint(dir, rcdem::io::CheckpointParts{&sim}, 0);
   for (const int t : a.threads) {
@@ -357,6 +380,7 @@ void time_each_thread_count(rcdem::Simulation& sim, const BenchArgs& a, double s
 }  // namespace
 
 int main(int argc, char** argv) {
+  rcdem::prefer_huge_pages(argv);          // as rcdem does (core/huge_pages.hpp)
   rcdem::prefer_passive_thread_waiting();  // as rcdem does (core/thread_waiting.hpp)
   BenchArgs a;
   if (!parse_args(argc, argv, a)) return 1;

@@ -28,6 +28,7 @@
 #include "rcdem/mpi/mpi_communicator.hpp"
 #include "rcdem/mpi/peer_watch.hpp"
 #endif
+#include "rcdem/core/huge_pages.hpp"
 #include "rcdem/core/progress.hpp"
 #include "rcdem/core/thread_waiting.hpp"
 #include "rcdem/io/atomic_file.hpp"
@@ -348,6 +349,7 @@ int follow(rcdem::RankGroup& group, const std::string& threads) {
 #endif
 
 int main(int argc, char** argv) {
+  rcdem::prefer_huge_pages(argv);          // may start again: first (core/huge_pages.hpp)
   rcdem::prefer_passive_thread_waiting();  // before any OpenMP call (core/thread_waiting.hpp)
   // A file-size limit (ulimit -f) then fails a write with EFBIG, which rcdem reports like any
   // write failure, instead of killing the run without a word or a checkpoint.
