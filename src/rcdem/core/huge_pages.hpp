@@ -4,13 +4,14 @@
 // A cracked specimen's step reads much of its memory at scattered places (held contacts' sums,
 // visited points, the bodies' spins). With 4 KiB pages each such read of a step's tens of
 // megabytes also misses the TLB and walks the page table: on the 2-core test machine a random
-// line cost 270 ns of latency against 185 ns in huge pages, and the cracked cube's step ran 6%
-// faster in them (bench/RESULTS.md, "Huge pages"). Debian's default THP mode is `madvise`: only
+// line's latency was 175-274 ns against 160-185 ns in huge pages, and the cracked cube's and AN4
+// beam's steps ran 5% faster in them (bench/RESULTS.md, "Huge pages, and the step's memory
+// floor"). Debian's default THP mode is `madvise`: only
 // ranges a process asks for get huge pages, and glibc's malloc asks for its heap only under
 // GLIBC_TUNABLES=glibc.malloc.hugetlb=1, which its loader reads when the program starts. So the
 // CLI (and rcdem_step_bench) start again, once, first thing in main(), with that setting added:
 // the same program, arguments and process. Asking afterwards (madvise and MADV_COLLAPSE on the
-// heap) copies every page already touched, about half a second for a cube's 190 MB, which a short
+// heap) copies every page already touched, about half a second for a cube's 188 MB, which a short
 // run does not win back. The pages change the speed only, never a result.
 #include <optional>
 #include <string>
