@@ -8,18 +8,11 @@
 #   rcdem_step_bench examples/three_point_bending/study/AN4_NL-B.toml 1 112000 1 --save-checkpoint results/s54/ck_an4
 cd "$(dirname "$0")/../.."
 date -u; nproc; grep -m1 "model name" /proc/cpuinfo; cat /sys/kernel/mm/transparent_hugepage/enabled
-A=${A:-/tmp/ab/A}; B=build/bench/rcdem_step_bench
-CUBE=examples/uniaxial/tension.toml; AN4=examples/three_point_bending/study/AN4_NL-B.toml
+A=${A:-/tmp/ab/A}; B=build/bench/rcdem_step_bench; CUBE=examples/uniaxial/tension.toml
 CKC=${CKC:-results/s54/ck_cube/checkpoint_000000012000.h5}
 CKA=${CKA:-results/s54/ck_an4/checkpoint_000000112000.h5}
-export OMP_NUM_THREADS=1
-ab() { /usr/bin/python3 bench/ab_compare.py "$@" 2>&1 | grep -v "^round"; }
-echo "== cube at step 12,000, 300 steps after 20: A vs B"
-ab 8 $A $B $CUBE 300 20 1 --checkpoint $CKC
-echo "== AN4 NL-B at step 112,000, 100 steps after 50: A vs B"
-ab 6 $A $B $AN4 100 50 1 --checkpoint $CKA
-echo "== intact cube, 1000 steps after 50: A vs B"
-ab 6 $A $B $CUBE 1000 50 1
+# As run: the same three comparisons written out in this script; now bench/cracked_ab.sh.
+INTACT_ROUNDS=6 bash bench/cracked_ab.sh $A $B $CKC $CKA
 echo "== the floor, 4 KiB pages (RCDEM_HUGE_PAGES=off)"
 RCDEM_HUGE_PAGES=off /usr/bin/python3 bench/step_floor.py build $CUBE $CKC 5
 echo "== the floor, 2 MiB pages"
