@@ -34,7 +34,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <ctime>
@@ -140,14 +139,21 @@ struct ByteCount {
   double nodes_total() const { return per_node * nodes; }
   // What no hardware prefetcher follows (bench/step_floor.py): the held contacts' sums, scattered
   // through their blocks, and the visited points' records, read where their contacts lie among
-  // condensed ones; their lines, and the bytes of the count above they stand for.
-  double held_sum_lines = 0, point_lines = 0;
+  // condensed ones; their lines, and the bytes of the count above they stand for. A block's sums
+  // are a vector of HeldSums (malloc: 16-byte aligned), so a record starts at any 16-byte offset
+  // in a line and touches every line it reaches from the worst one; a point's record is aligned
+  // to lines (alignas(64)).
+  static constexpr double kLine = 64, kMallocAlign = 16;
+  static constexpr double kHeldSumLines =
+      static_cast<int>((kLine - kMallocAlign + sizeof(rcdem::HeldSums) + kLine - 1) / kLine);
+  static constexpr double kPointLines = sizeof(rcdem::LocalPointRecord) / kLine;
   double scattered_lines() const {
-    return held_sum_lines * held_contacts + point_lines * (visited_points + interface_points);
+    return kHeldSumLines * held_contacts + kPointLines * (visited_points + interface_points);
   }
   double scattered_bytes() const {
     return static_cast<double>(sizeof(rcdem::HeldSums)) * held_contacts +
-           64.0 * point_lines * (visited_points + interface_points);
+           static_cast<double>(sizeof(rcdem::LocalPointRecord)) *
+               (visited_points + interface_points);
   }
   double total() const {
     return points_total() + contacts_total() + bodies_total() + plates_total() +
@@ -196,12 +202,6 @@ ByteCount count_bytes(const rcdem::Simulation& sim) {
                + (NR + NF + 2 * 2 * 2 * V)            // gather
                + (NC + NS + R);                       // energy ledger
 
-  // A block's sums are a vector of HeldSums (malloc: 16-byte aligned), so a record starts at
-  // any 16-byte offset in a line and touches every line it reaches from the worst one.
-  constexpr double kLine = 64, kMallocAlign = 16;
-  constexpr double kHeldAlign = alignof(rcdem::HeldSums) >= 64 ? 64 : kMallocAlign;
-  b.held_sum_lines = std::ceil((kLine - kHeldAlign + sizeof(rcdem::HeldSums)) / kLine);
-  b.point_lines = sizeof(rcdem::LocalPointRecord) / kLine;  // aligned to lines (alignas(64))
   const rcdem::Specimen& sp = sim.specimen();
   b.local_points = static_cast<double>(sp.contacts.point_count());
   b.contacts = static_cast<double>(sp.contacts.contact_count());

@@ -37,13 +37,19 @@ def fields(line):
 
 
 def page_size():
-    if os.environ.get("RCDEM_HUGE_PAGES") in ("off", "0"):
-        return "4k"
+    """The pages rcdem_step_bench runs in here, by core/huge_pages.hpp's rule."""
     try:
         mode = open("/sys/kernel/mm/transparent_hugepage/enabled").read()
     except OSError:
         return "4k"
-    return "2m" if ("[always]" in mode or "[madvise]" in mode) else "4k"
+    if "[always]" in mode:
+        return "2m"
+    if "[madvise]" not in mode:
+        return "4k"
+    tunables = os.environ.get("GLIBC_TUNABLES", "")
+    if "glibc.malloc.hugetlb" in tunables:  # the user's own value is kept
+        return "4k" if "glibc.malloc.hugetlb=0" in tunables else "2m"
+    return "4k" if "RCDEM_HUGE_PAGES" in os.environ else "2m"
 
 
 def main():
