@@ -4,8 +4,9 @@
 // softening along the normal envelope (held_contacts.hpp's on_normal_envelope), B broken and open
 // (its broken_and_open), C broken, closed and sticking (|fs| below mu_c (-fn): linear with kn, ks
 // while it stays so), K broken and carrying otherwise (sliding), X the rest (at a cap, shear
-// damage read). Also the visited contacts whose softening clock makes them wait. The holds take
-// I+B and S+B (held_contacts.hpp).
+// damage read). Also the visited contacts whose softening clock makes them wait, and the held
+// contacts by the kinds of their points at their entry. The holds take I+B and S+B
+// (held_contacts.hpp).
 // With FOLLOW > 0, the contacts that mix I and S points are then followed for FOLLOW steps: how
 // many steps each stays visited with every point of its kind at the start (I still I, S still S
 // and opening further), what a hold of mixed contacts could at most keep (its bound refuses some
@@ -63,12 +64,21 @@ void census(const rcdem::Simulation& sim, rcdem::Real mu_c) {
   const auto& cond = concrete.condensation();
   const auto& net = sim.specimen().contacts;
   const auto& points = concrete.state().point.records;
-  std::map<std::string, long> kinds;
+  std::map<std::string, long> kinds, held_kinds;
   long visits = 0, held = 0, condensed = 0, waiting = 0, points_visited = 0;
   for (rcdem::Index c = 0; c < net.contact_count(); ++c) {
     const auto i = static_cast<std::size_t>(c);
     held += cond.held.held[i];
     condensed += cond.condensed[i] && !cond.held.held[i];
+    if (cond.held.held[i]) {
+      std::string present;
+      for (rcdem::Index m = net.point_begin[c]; m < net.point_begin[c + 1]; ++m)
+        present += point_kind(points[static_cast<std::size_t>(m)], mu_c);
+      std::string key;
+      for (const char k : std::string("ISBCKX"))
+        if (present.find(k) != std::string::npos) key += k;
+      ++held_kinds[key];
+    }
     if (!visited(concrete, c)) continue;
     ++visits;
     std::string present;
@@ -87,6 +97,10 @@ void census(const rcdem::Simulation& sim, rcdem::Real mu_c) {
   for (const auto& [key, n] : kinds)
     std::printf("  %-6s %6ld  %5.1f%%\n", key.c_str(), n,
                 100.0 * static_cast<double>(n) / static_cast<double>(visits));
+  std::printf("held contacts by their points' kinds at their entry:\n");
+  for (const auto& [key, n] : held_kinds)
+    std::printf("  %-6s %6ld  %5.1f%%\n", key.c_str(), n,
+                100.0 * static_cast<double>(n) / static_cast<double>(std::max(held, 1L)));
 }
 
 // A followed contact: its points' kinds and openings at the last step, and how long it has lasted.

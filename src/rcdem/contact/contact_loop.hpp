@@ -382,6 +382,32 @@ template <typename Law>
   return visits;
 }
 
+// What the held contacts' kernel will read of the block from `begin` outside the block's own
+// data (its held contacts' sums, both ends' spins, the stored frames), requested into L2 once this
+// block's held contacts are done: this thread most likely evaluates that block next, and the
+// requests have this block's points and the next block's condensed contacts to arrive in. Asked
+// for within the block itself, before its kernel, they came too late for it to find them, and a
+// pass that loaded them there waited on each line (bench/RESULTS.md).
+[[gnu::always_inline]] inline void prefetch_held_sums(const ElasticCondensation& cond, Index begin,
+                                                      Index contacts, const ContactInputs& in,
+                                                      const ContactState& cs) {
+  const HeldContacts& h = cond.held;
+  const auto b = static_cast<std::size_t>(begin / HeldContacts::kBlock);
+  if (begin >= contacts || h.block[b].empty()) return;
+  const Index end = std::min(begin + HeldContacts::kBlock, contacts);
+  const char* sums = reinterpret_cast<const char*>(h.block[b].data());
+  for (Index c = begin; c < end; ++c) {
+    if (!h.held[static_cast<std::size_t>(c)]) continue;
+    const char* p = sums + sizeof(HeldSums) * static_cast<std::size_t>(c - begin);
+    for (std::size_t k = 0; k < sizeof(HeldSums); k += 64) __builtin_prefetch(p + k, 0, 2);
+    __builtin_prefetch(p + sizeof(HeldSums) - 1, 0, 2);
+    __builtin_prefetch(in.w + in.net.particle_b[c], 0, 2);
+    __builtin_prefetch(in.w + in.net.particle_a[c], 0, 2);
+    __builtin_prefetch(cs.normal.data() + c, 0, 2);
+    __builtin_prefetch(cs.tangent.data() + c, 0, 2);
+  }
+}
+
 // The visited contacts `visit[0, count)` of the block from `begin`, just evaluated in their frames
 // `frames[c - begin]`, that are damaged and have every point inside its room are held from the
 // next step (hold_contact; u_nu > 0: softening points too, unless the contact's softening clock
@@ -471,13 +497,6 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
           if (keep) continue;
           if (was_condensed) evaluate_contact<Law, true>(law, *previous, cs, cond, c);
           if (kHoldableLaw<Law> && cond->held.held[c]) {  // its frame comes with its sums
-            // What the kernel gathers that the condensed kernel has not brought in, besides the
-            // sums (which the kernel loads itself): B's spin above all (a line of its own,
-            // anywhere in the bodies), and the stored frame.
-            __builtin_prefetch(in.w + in.net.particle_b[c]);
-            __builtin_prefetch(in.w + in.net.particle_a[c]);
-            __builtin_prefetch(cs.normal.data() + c);
-            __builtin_prefetch(cs.tangent.data() + c);
             held[helds++] = c;
             continue;
           }
@@ -489,6 +508,8 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
           if (helds > 0)
             visits = evaluate_held_contacts(law, in, *previous, cs, *cond, held, helds, frames,
                                             begin, energy, visit, visits, held_damage);
+        if constexpr (kHoldableLaw<Law>)
+          prefetch_held_sums(*cond, begin + kBlock, in.net.contact_count(), in, cs);
         PointTransitions changed;
         for (Index k = 0; k < visits; ++k)
           note_transitions(cs, visit[k],

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <limits>
 
 #include "rcdem/contact/contact_kinematics.hpp"
@@ -258,13 +257,20 @@ struct LaneSums {
 [[gnu::always_inline]] inline void gather_lanes(const HeldInputs& in, const Index* list,
                                                 Index count, HeldLanes& g) {
   const CondensedSums& s = in.sums;
+  // First what lies outside the block's data (the spins, the stored frames), in a short loop per
+  // contact, so that the core has many contacts' misses in flight at once.
   for (Index l = 0; l < count; ++l) {
     const Index c = list[l], a = in.particle_a[c], b = in.particle_b[c];
-    const auto i = static_cast<std::size_t>(c);
     for (int k = 0; k < 3; ++k) {
       g.no[k][l] = in.normal[3 * c + k];
       g.to[k][l] = in.tangent[3 * c + k];
       g.wsum[k][l] = in.w[3 * a + k] + in.w[3 * b + k];
+    }
+  }
+  for (Index l = 0; l < count; ++l) {
+    const Index c = list[l], a = in.particle_a[c], b = in.particle_b[c];
+    const auto i = static_cast<std::size_t>(c);
+    for (int k = 0; k < 3; ++k) {
       g.r0[k][l] = s.offset0[k][i];
       g.rc[k][l] = s.centroid[k][i];
     }
@@ -397,28 +403,6 @@ RCDEM_SIMD_TARGET_AVX512 void held_block_avx512(const HeldInputs& in, const Inde
 }
 #endif
 
-// Every line of the listed contacts' sums loaded once, before the gather, by loads that depend on
-// nothing but the list: the core keeps many of them in flight, where the gather, whose 34 stores
-// a contact fill the store queue, waited on each contact's lines in turn (the first read of each
-// line held about half of the kernel's time), and software prefetches of the same lines, from the
-// block's listing and 4 contacts ahead in the gather, left most of that wait (bench/RESULTS.md).
-// The bits read are only kept from being optimised away.
-void load_held_sums(const HeldInputs& in, const Index* list, Index count) {
-  constexpr std::size_t kLast = sizeof(HeldSums) - sizeof(std::uint64_t);
-  std::uint64_t any = 0, word;
-  for (Index l = 0; l < count; ++l) {
-    // A word every 64 bytes and the last one: every line the sums touch, wherever they start.
-    const char* p = reinterpret_cast<const char*>(in.held_sums + kHeldSize * (list[l] - in.begin));
-    for (std::size_t k = 0; k < sizeof(HeldSums); k += 64) {
-      std::memcpy(&word, p + k, sizeof word);
-      any |= word;
-    }
-    std::memcpy(&word, p + kLast, sizeof word);
-    any |= word;
-  }
-  asm volatile("" : : "r"(any));
-}
-
 }  // namespace
 
 void broken_point_sums(CondensedSums& sums, Index c, const Vec3& xa0,
@@ -550,19 +534,27 @@ bool hold_contact(CondensedSums& sums, Index c, const ContactFrame& f, const Rea
 
 void evaluate_held_block(const HeldInputs& in, const Index* list, Index count, bool energy,
                          HeldOutputs& out) {
-  load_held_sums(in, list, count);
+  // The list run to a whole number of the widest lanes (8 doubles), its last contact repeated
+  // (outputs past `count` are not read): a list's last few contacts otherwise went through the
+  // loop's scalar remainder, one at a time, at the cost of a vector iteration each.
+  constexpr Index kWidest = 8;
+  static_assert(HeldContacts::kBlock % kWidest == 0, "a block is whole vectors");
+  Index padded[HeldContacts::kBlock];
+  const Index whole = (count + kWidest - 1) / kWidest * kWidest;
+  std::copy(list, list + count, padded);
+  std::fill(padded + count, padded + whole, count > 0 ? list[count - 1] : 0);
   HeldLanes lanes;
 #if RCDEM_SIMD_MULTIVERSION
   switch (simd_level()) {
     case SimdLevel::Avx512:
-      return held_block_avx512(in, list, count, energy, &lanes, out);
+      return held_block_avx512(in, padded, whole, energy, &lanes, out);
     case SimdLevel::Avx2:
-      return held_block_avx2(in, list, count, energy, &lanes, out);
+      return held_block_avx2(in, padded, whole, energy, &lanes, out);
     case SimdLevel::Baseline:
       break;
   }
 #endif
-  held_block_baseline(in, list, count, energy, &lanes, out);
+  held_block_baseline(in, padded, whole, energy, &lanes, out);
 }
 
 Real held_strain_energy(const CondensedSums& s, Index c, const HeldSums& h, const Vec3& n,
