@@ -339,6 +339,7 @@ template <typename Law>
                                                Index count, ContactFrame* frames, Index begin,
                                                Real* energy, Index* visit, Index visits,
                                                Real& damage) {
+  HeldSums* block_sums = &cond.held.sums(begin);  // the block's, by c - begin
   const HeldInputs hi{cond.sums,
                       in.net.particle_a.data(),
                       in.net.particle_b.data(),
@@ -347,7 +348,7 @@ template <typename Law>
                       cs.normal.data()->data(),
                       cs.tangent.data()->data(),
                       in.dt,
-                      reinterpret_cast<const Real*>(&cond.held.sums(begin)),
+                      reinterpret_cast<const Real*>(block_sums),
                       begin};
   HeldOutputs out;
   evaluate_held_block(hi, held, count, energy != nullptr, out);
@@ -364,7 +365,7 @@ template <typename Law>
       cs.dissipated_friction[c] = 0.0;
       damage += out.dissipated[k];
       if (energy) energy[c] = out.energy[k];
-      HeldSums& h = cond.held.sums(c);
+      HeldSums& h = block_sums[c - begin];
       if (h.open_margin >= 0) {  // with broken points: this step is the next one's last
         h.last_du_n = out.du_n[k];
         for (int e = 0; e < 3; ++e) h.last_dd_n[e] = out.dd_n[e][k];
@@ -373,7 +374,7 @@ template <typename Law>
       continue;
     }
     prefetch_points(in.net, cs.point, c);
-    if (cond.held.sums(c).slope_n < 0) end_softening_hold(cond.held, c);
+    if (block_sums[c - begin].slope_n < 0) end_softening_hold(cond.held, c);
     release_held(law, previous, cs, cond, c);
     contact_frame(in, cs, &cond, c, frames[c - begin]);
     visit[visits++] = c;

@@ -257,8 +257,9 @@ struct LaneSums {
 [[gnu::always_inline]] inline void gather_lanes(const HeldInputs& in, const Index* list,
                                                 Index count, HeldLanes& g) {
   const CondensedSums& s = in.sums;
-  // First what lies outside the block's data (the spins, the stored frames), in a short loop per
-  // contact, so that the core has many contacts' misses in flight at once.
+  // First what lies outside the block's data (the spins, the stored frames), then the sums, each
+  // in a short loop per contact of its own, so that the core has many contacts' misses in flight
+  // at once (in one long loop it waited on each contact's lines in turn).
   for (Index l = 0; l < count; ++l) {
     const Index c = list[l], a = in.particle_a[c], b = in.particle_b[c];
     for (int k = 0; k < 3; ++k) {
@@ -268,6 +269,10 @@ struct LaneSums {
     }
   }
   for (Index l = 0; l < count; ++l) {
+    const Real* h = in.held_sums + kHeldSize * (list[l] - in.begin);
+    for (int k = 0; k < kHeldSize; ++k) g.h[k][l] = h[k];
+  }
+  for (Index l = 0; l < count; ++l) {
     const Index c = list[l], a = in.particle_a[c], b = in.particle_b[c];
     const auto i = static_cast<std::size_t>(c);
     for (int k = 0; k < 3; ++k) {
@@ -275,8 +280,6 @@ struct LaneSums {
       g.rc[k][l] = s.centroid[k][i];
     }
     for (int k = 0; k < 6; ++k) g.j[k][l] = s.j[k][i];
-    const Real* h = in.held_sums + kHeldSize * (c - in.begin);
-    for (int k = 0; k < kHeldSize; ++k) g.h[k][l] = h[k];
     g.kn[l] = s.k_n[i];
     g.al[l] = s.alpha[i];
     g.radius[l] = s.radius[i];
