@@ -12,8 +12,10 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <limits>
+#include <memory>
 #include <string>
 #include <variant>
 #include <vector>
@@ -24,10 +26,12 @@
 
 #include "rcdem/config/scenario.hpp"
 #include "rcdem/contact/laws/law_registry.hpp"
+#include "rcdem/contact/held_contacts.hpp"
 #include "rcdem/run/checkpoint.hpp"
 #include "rcdem/solver/concrete_contacts.hpp"
 #include "rcdem/solver/simulation.hpp"
 #include "rcdem/specimens/specimen.hpp"
+#include "rcdem/state/body_poses.hpp"
 #include "small_scenarios.hpp"
 
 using namespace rcdem;
@@ -455,4 +459,68 @@ TEST(HeldContacts, ShortSofteningHoldsWaitAndACheckpointKeepsTheirClocks) {
   }
   EXPECT_EQ(writer.strain_energy(), restored.strain_energy());
   fs::remove_all(dir);
+}
+
+// The held contacts' kernel gives a contact the same bits wherever it stands in the block's list
+// and however long the list is (a lane computes alone; a list is run to whole vectors, its last
+// contact repeated): what makes a run's bits independent of the thread count. Every sub-list of a
+// cracked block's held contacts against the whole list, output by output.
+TEST(HeldContacts, TheKernelGivesAContactTheSameBitsWhereverItIsListed) {
+  const Scenario sc = pulled_box(true);
+  Simulation sim(sc, build_specimen(sc));
+  for (int k = 0; k < 2500; ++k) sim.step();  // past the peak (about step 1,500)
+  const ConcreteContacts* concrete = concrete_part(sim);
+  ASSERT_NE(concrete, nullptr);
+  const ContactNetwork& net = sim.specimen().contacts;
+  const ElasticCondensation& cond = concrete->condensation();
+  const HeldContacts& h = cond.held;
+  // The block with the most held contacts.
+  Index best = -1, most = 0;
+  for (Index begin = 0; begin < net.contact_count(); begin += HeldContacts::kBlock) {
+    Index n = 0;
+    for (Index c = begin; c < std::min(begin + HeldContacts::kBlock, net.contact_count()); ++c)
+      n += h.held[static_cast<std::size_t>(c)];
+    if (n > most) most = n, best = begin;
+  }
+  ASSERT_GE(most, 17) << "the test needs a block with more than two vectors of held contacts";
+  std::vector<Index> list;
+  for (Index c = best; c < std::min(best + HeldContacts::kBlock, net.contact_count()); ++c)
+    if (h.held[static_cast<std::size_t>(c)]) list.push_back(c);
+  const Bodies& bodies = sim.bodies();
+  const BodyPoses poses = BodyPoses::of(bodies.position, bodies.orientation);
+  const ContactState& cs = concrete->state();
+  const HeldInputs in{cond.sums,
+                      net.particle_a.data(),
+                      net.particle_b.data(),
+                      poses.ptr(),
+                      bodies.angular_velocity.data()->data(),
+                      cs.normal.data()->data(),
+                      cs.tangent.data()->data(),
+                      sim.time_step(),
+                      reinterpret_cast<const Real*>(&h.sums(best)),
+                      best};
+  const auto whole = std::make_unique<HeldOutputs>();
+  evaluate_held_block(in, list.data(), static_cast<Index>(list.size()), true, *whole);
+  // Each output of entry k as doubles (kept as a number too).
+  const auto outputs = [](const HeldOutputs& o, Index k) {
+    std::vector<Real> v;
+    for (int i = 0; i < 3; ++i)
+      for (const auto* a : {o.force, o.torque_b, o.torque_a, o.n, o.t1, o.dd_n}) v.push_back(a[i][k]);
+    for (const Real x : {o.energy[k], o.du_n[k], o.dissipated[k], Real(o.kept[k])}) v.push_back(x);
+    return v;
+  };
+  const auto part = std::make_unique<HeldOutputs>();
+  Index compared = 0;
+  for (std::size_t first = 0; first < list.size(); first += 3)
+    for (std::size_t count = 1; first + count <= list.size(); ++count) {
+      evaluate_held_block(in, list.data() + first, static_cast<Index>(count), true, *part);
+      for (std::size_t k = 0; k < count; ++k) {
+        const std::vector<Real> a = outputs(*whole, static_cast<Index>(first + k));
+        const std::vector<Real> b = outputs(*part, static_cast<Index>(k));
+        ASSERT_EQ(0, std::memcmp(a.data(), b.data(), a.size() * sizeof(Real)))
+            << "contact " << list[first + k] << " at " << k << " of " << count;
+        ++compared;
+      }
+    }
+  EXPECT_GT(compared, 1000);
 }
