@@ -384,11 +384,12 @@ template <typename Law>
 }
 
 // What the held contacts' kernel will read of the block from `begin` outside the block's own
-// data (its held contacts' sums, both ends' spins, the stored frames), requested into L2 once this
-// block's held contacts are done: this thread most likely evaluates that block next, and the
-// requests have this block's points and the next block's condensed contacts to arrive in. Asked
-// for within the block itself, before its kernel, they came too late for it to find them, and a
-// pass that loaded them there waited on each line (bench/RESULTS.md).
+// data (its held contacts' sums, both ends' spins, the stored frames), and the dissipation it
+// writes, requested into L2 once this block's held contacts are done: this thread most likely
+// evaluates that block next, and the requests have this block's points and the next block's
+// condensed contacts to arrive in. Asked for within the block itself, before its kernel, they
+// came too late for it to find them, and a pass that loaded them there waited on each line
+// (bench/RESULTS.md).
 [[gnu::always_inline]] inline void prefetch_held_sums(const ElasticCondensation& cond, Index begin,
                                                       Index contacts, const ContactInputs& in,
                                                       const ContactState& cs) {
@@ -397,6 +398,9 @@ template <typename Law>
   if (begin >= contacts || h.block[b].empty()) return;
   const Index end = std::min(begin + HeldContacts::kBlock, contacts);
   const char* sums = reinterpret_cast<const char*>(h.block[b].data());
+  // The held contacts' dissipation is written into lines the condensed kernel does not touch.
+  for (const std::vector<Real>* v : {&cs.dissipated_damage, &cs.dissipated_friction})
+    for (Index c = begin; c < end; c += 8) __builtin_prefetch(v->data() + c, 1, 2);
   for (Index c = begin; c < end; ++c) {
     if (!h.held[static_cast<std::size_t>(c)]) continue;
     const char* p = sums + sizeof(HeldSums) * static_cast<std::size_t>(c - begin);
