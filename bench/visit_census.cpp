@@ -46,6 +46,18 @@ char point_kind(const rcdem::LocalPointRecord& p, rcdem::Real mu_c) {
   return to_cap_n > 0 && to_cap_s > 0 && !shear_read ? 'I' : 'X';
 }
 
+// The kinds present among contact c's points, in the order ISBCKX (e.g. "IS").
+std::string kinds_of(const rcdem::ContactNetwork& net, const rcdem::LocalPointRecord* points,
+                     rcdem::Index c, rcdem::Real mu_c) {
+  std::string present;
+  for (rcdem::Index m = net.point_begin[c]; m < net.point_begin[c + 1]; ++m)
+    present += point_kind(points[static_cast<std::size_t>(m)], mu_c);
+  std::string key;
+  for (const char k : std::string("ISBCKX"))
+    if (present.find(k) != std::string::npos) key += k;
+  return key;
+}
+
 const rcdem::ConcreteContacts& concrete_part(const rcdem::Simulation& sim) {
   for (const rcdem::StepPart* part : sim.parts())
     if (const auto* c = dynamic_cast<const rcdem::ConcreteContacts*>(part)) return *c;
@@ -70,24 +82,11 @@ void census(const rcdem::Simulation& sim, rcdem::Real mu_c) {
     const auto i = static_cast<std::size_t>(c);
     held += cond.held.held[i];
     condensed += cond.condensed[i] && !cond.held.held[i];
-    if (cond.held.held[i]) {
-      std::string present;
-      for (rcdem::Index m = net.point_begin[c]; m < net.point_begin[c + 1]; ++m)
-        present += point_kind(points[static_cast<std::size_t>(m)], mu_c);
-      std::string key;
-      for (const char k : std::string("ISBCKX"))
-        if (present.find(k) != std::string::npos) key += k;
-      ++held_kinds[key];
-    }
+    if (cond.held.held[i]) ++held_kinds[kinds_of(net, points.data(), c, mu_c)];
     if (!visited(concrete, c)) continue;
     ++visits;
-    std::string present;
-    for (rcdem::Index m = net.point_begin[c]; m < net.point_begin[c + 1]; ++m, ++points_visited)
-      present += point_kind(points[static_cast<std::size_t>(m)], mu_c);
-    std::string key;
-    for (const char k : std::string("ISBCKX"))
-      if (present.find(k) != std::string::npos) key += k;
-    ++kinds[key];
+    points_visited += net.points_of(c);
+    ++kinds[kinds_of(net, points.data(), c, mu_c)];
     waiting += cond.held.softening_clock[i] < 0;
   }
   std::printf(

@@ -186,13 +186,14 @@ struct ContactInputs {
   frame_kinematics(in, cond, c, f);
 }
 
-// Asks for the cache lines that hold elements [begin, end) of an array (kWrite: to be written).
-template <int kWrite, typename T>
+// Asks for the cache lines that hold elements [begin, end) of an array (kWrite: to be written)
+// into L1, or with kLocality 2 into L2.
+template <int kWrite, typename T, int kLocality = 3>
 [[gnu::always_inline]] inline void prefetch_elements(const T* p, Index begin, Index end) {
   const char* lo = reinterpret_cast<const char*>(p + begin);
   const char* hi = reinterpret_cast<const char*>(p + end) - 1;
-  for (const char* q = lo; q < hi; q += 64) __builtin_prefetch(q, kWrite);
-  __builtin_prefetch(hi, kWrite);
+  for (const char* q = lo; q < hi; q += 64) __builtin_prefetch(q, kWrite, kLocality);
+  __builtin_prefetch(hi, kWrite, kLocality);
 }
 
 // Contact c's points' records, requested while the block forms its frames: the damaged contacts
@@ -397,15 +398,13 @@ template <typename Law>
   const auto b = static_cast<std::size_t>(begin / HeldContacts::kBlock);
   if (begin >= contacts || h.block[b].empty()) return;
   const Index end = std::min(begin + HeldContacts::kBlock, contacts);
-  const char* sums = reinterpret_cast<const char*>(h.block[b].data());
+  constexpr int kL2 = 2;
   // The held contacts' dissipation is written into lines the condensed kernel does not touch.
-  for (const std::vector<Real>* v : {&cs.dissipated_damage, &cs.dissipated_friction})
-    for (Index c = begin; c < end; c += 8) __builtin_prefetch(v->data() + c, 1, 2);
+  prefetch_elements<1, Real, kL2>(cs.dissipated_damage.data(), begin, end);
+  prefetch_elements<1, Real, kL2>(cs.dissipated_friction.data(), begin, end);
   for (Index c = begin; c < end; ++c) {
     if (!h.held[static_cast<std::size_t>(c)]) continue;
-    const char* p = sums + sizeof(HeldSums) * static_cast<std::size_t>(c - begin);
-    for (std::size_t k = 0; k < sizeof(HeldSums); k += 64) __builtin_prefetch(p + k, 0, 2);
-    __builtin_prefetch(p + sizeof(HeldSums) - 1, 0, 2);
+    prefetch_elements<0, HeldSums, kL2>(h.block[b].data(), c - begin, c - begin + 1);
     __builtin_prefetch(in.w + in.net.particle_b[c], 0, 2);
     __builtin_prefetch(in.w + in.net.particle_a[c], 0, 2);
     __builtin_prefetch(cs.normal.data() + c, 0, 2);
