@@ -31,6 +31,11 @@
 #     ratio_particle_steps_vs_yade_intact=<median> and ..._cracked=<median>. HOLD=0: rcdem's
 #     cracked cube with solver.hold_unloading_contacts = false (on by default since 2026-11-28).
 #     The checkpoint is made with the scenario as it is (the held contacts in it, format 6).
+#     REFERENCE_BUILD: another commit's build directory, timed the same way right after rcdem in
+#     every round (its own ratio per round, its medians ratio_reference_..._intact/_cracked), so
+#     that the targets set on another machine can be read against that commit on this one; with
+#     REFERENCE_CUBE (its version of the cube's scenario, default the cube) and
+#     REFERENCE_CHECKPOINT (its cracked cube at step 12,000, required).
 #   bash bench/throughput.sh --scaling [STEPS=200] [BUILD_DIR=build]
 #     rcdem_step_bench on cubes of SCALING_SIZES (default 0.07 0.11 0.16 m: about 0.9k, 3.4k and
 #     10.3k particles, 12x) at THREADS threads; one line per size with the time per step per
@@ -122,12 +127,21 @@ if [[ $CRACKED == 1 ]]; then
     cracked_cube="$tmp/tension_visit.toml"
     awk '{ print } /^\[solver\]/ { print "hold_unloading_contacts = false" }' "$cube" > "$cracked_cube"
   fi
+  ref=${REFERENCE_BUILD:-}
+  if [[ -n "$ref" ]]; then
+    [[ -x "$ref/bench/rcdem_step_bench" ]] || { echo "REFERENCE_BUILD: no $ref/bench/rcdem_step_bench" >&2; exit 1; }
+    [[ -f "${REFERENCE_CHECKPOINT:-}" ]] || { echo "REFERENCE_CHECKPOINT: the reference's cracked cube checkpoint (a file) is required with REFERENCE_BUILD" >&2; exit 1; }
+    ref_cube=${REFERENCE_CUBE:-$cube}
+    echo "reference: $ref (git $(git -C "$ref/.." rev-parse --short HEAD 2>/dev/null || echo '?')), $ref_cube, from $REFERENCE_CHECKPOINT"
+  fi
   echo "cracked: rcdem $cube intact and from $ckpt (HOLD=${HOLD:-1}); YADE ${YADE_N:-10335} spheres; $THREADS thread(s), $ROUNDS rounds"
   for state in intact cracked; do
     if [[ $state == intact ]]; then
       between="OMP_NUM_THREADS=$THREADS $STEP_BENCH $cube $K 50 $REPEATS | grep -v '^#'"
+      [[ -z "$ref" ]] || between+="; OMP_NUM_THREADS=$THREADS $ref/bench/rcdem_step_bench $ref_cube $K 50 $REPEATS | grep -v '^#' | sed 's/^scenario=/reference scenario=/'"
     else
       between="OMP_NUM_THREADS=$THREADS $STEP_BENCH $cracked_cube $K 20 $REPEATS --checkpoint $ckpt | grep -v '^#'"
+      [[ -z "$ref" ]] || between+="; OMP_NUM_THREADS=$THREADS $ref/bench/rcdem_step_bench $ref_cube $K 20 $REPEATS --checkpoint $REFERENCE_CHECKPOINT | grep -v '^#' | sed 's/^scenario=/reference scenario=/'"
     fi
     if ! YADE_BETWEEN="$between" "$YADE" -n -x -j "$THREADS" bench/yade_cpm.py "${YADE_N:-10335}" \
         "$K" "$ROUNDS" "$state" > "$tmp/yade_$state.log" 2>&1; then
@@ -138,10 +152,19 @@ if [[ $CRACKED == 1 ]]; then
     grep '^# yade_cpm' "$tmp/yade_$state.log" || true
     spheres=$(kv yade_spheres "$(grep '^yade_threads=' "$tmp/yade_$state.log" | tail -n1)")
     ratios=()
+    ref_ratios=()
     ysteps=""
+    yref=""
     while IFS= read -r l; do
       case "$l" in
-        yade_round=*) ysteps=$(calc "$K / $(kv yade_seconds "$l")") ;;
+        yade_round=*) ysteps=$(calc "$K / $(kv yade_seconds "$l")"); yref=$ysteps ;;
+        "reference scenario="*)
+          [[ -n "$yref" ]] || continue
+          l=${l#reference }
+          ref_ratios+=("$(calc "$(kv steps_per_s "$l") * $(kv bodies "$l") / ($yref * $spheres)")")
+          echo "$state round=${#ref_ratios[@]} reference_steps_per_s=$(kv steps_per_s "$l") reference_bodies=$(kv bodies "$l") reference_ratio_particle_steps=${ref_ratios[-1]}"
+          yref=""
+          ;;
         scenario=*)
           [[ -n "$ysteps" ]] || continue
           rps=$(calc "$(kv steps_per_s "$l") * $(kv bodies "$l")")
@@ -154,6 +177,10 @@ if [[ $CRACKED == 1 ]]; then
     done < "$tmp/yade_$state.log"
     [[ ${#ratios[@]} -gt 0 ]] || { cat "$tmp/yade_$state.log" >&2; echo "no paired rounds ($state)" >&2; exit 1; }
     echo "ratio_particle_steps_vs_yade_$state=$(median "${ratios[@]}")"
+    if [[ -n "$ref" ]]; then
+      [[ ${#ref_ratios[@]} -gt 0 ]] || { cat "$tmp/yade_$state.log" >&2; echo "no reference rounds ($state)" >&2; exit 1; }
+      echo "ratio_reference_particle_steps_vs_yade_$state=$(median "${ref_ratios[@]}")"
+    fi
   done
   exit 0
 fi
