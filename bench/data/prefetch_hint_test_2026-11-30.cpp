@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
         case 1: __builtin_prefetch(&a[i], 0, 1); break;
         case 2: __builtin_prefetch(&a[i], 0, 2); break;
         case 3: __builtin_prefetch(&a[i], 0, 3); break;
+        case 4: sink += a[i]; break;
         default: break;
       }
     }
