@@ -1,3 +1,8 @@
+// A throw-away test behind bench/RESULTS.md (issue 43, 2026-11-30), not part of the build: how
+// long a line requested with a prefetch hint stays in the caches on this machine.
+//   g++ -O2 -march=native -o t bench/data/prefetch_hint_test_2026-11-30.cpp
+//   ./t HINT N WORK   (HINT: -1 none, 0..3 = __builtin_prefetch locality 0..3, 4 = a load)
+// Log: bench/data/issue43_tries_2026-11-30.txt.
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
