@@ -135,14 +135,17 @@ if [[ $CRACKED == 1 ]]; then
     echo "reference: $ref (git $(git -C "$ref/.." rev-parse --short HEAD 2>/dev/null || echo '?')), $ref_cube, from $REFERENCE_CHECKPOINT"
   fi
   echo "cracked: rcdem $cube intact and from $ckpt (HOLD=${HOLD:-1}); YADE ${YADE_N:-10335} spheres; $THREADS thread(s), $ROUNDS rounds"
+  # The step bench's command: BINARY SCENARIO WARMUP [CHECKPOINT], its result line only.
+  step_cmd() { echo "OMP_NUM_THREADS=$THREADS $1 $2 $K $3 $REPEATS ${4:+--checkpoint $4} | grep -v '^#'"; }
   for state in intact cracked; do
     if [[ $state == intact ]]; then
-      between="OMP_NUM_THREADS=$THREADS $STEP_BENCH $cube $K 50 $REPEATS | grep -v '^#'"
-      [[ -z "$ref" ]] || between+="; OMP_NUM_THREADS=$THREADS $ref/bench/rcdem_step_bench $ref_cube $K 50 $REPEATS | grep -v '^#' | sed 's/^scenario=/reference scenario=/'"
+      between=$(step_cmd "$STEP_BENCH" "$cube" 50)
+      ref_between=$([[ -z "$ref" ]] || step_cmd "$ref/bench/rcdem_step_bench" "$ref_cube" 50)
     else
-      between="OMP_NUM_THREADS=$THREADS $STEP_BENCH $cracked_cube $K 20 $REPEATS --checkpoint $ckpt | grep -v '^#'"
-      [[ -z "$ref" ]] || between+="; OMP_NUM_THREADS=$THREADS $ref/bench/rcdem_step_bench $ref_cube $K 20 $REPEATS --checkpoint $REFERENCE_CHECKPOINT | grep -v '^#' | sed 's/^scenario=/reference scenario=/'"
+      between=$(step_cmd "$STEP_BENCH" "$cracked_cube" 20 "$ckpt")
+      ref_between=$([[ -z "$ref" ]] || step_cmd "$ref/bench/rcdem_step_bench" "$ref_cube" 20 "$REFERENCE_CHECKPOINT")
     fi
+    [[ -z "$ref" ]] || between+="; $ref_between | sed 's/^scenario=/reference scenario=/'"
     if ! YADE_BETWEEN="$between" "$YADE" -n -x -j "$THREADS" bench/yade_cpm.py "${YADE_N:-10335}" \
         "$K" "$ROUNDS" "$state" > "$tmp/yade_$state.log" 2>&1; then
       cat "$tmp/yade_$state.log" >&2
