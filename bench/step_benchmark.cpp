@@ -2,7 +2,10 @@
 // bandwidth (issue: bench/ throughput and bandwidth, YADE side by side).
 //
 // Usage: rcdem_step_bench SCENARIO.toml STEPS [WARMUP=50] [REPEATS=1] [--checkpoint FILE]
-//                         [--save-checkpoint DIR] [--threads N|auto,...]
+//                         [--save-checkpoint DIR] [--threads N|auto,...] [--set KEY=VALUE ...]
+//   --set: as rcdem run's (config/scenario_overrides.hpp), so that one binary times two settings
+//   of a key (bench/ab_compare.py with a wrapper that adds it: where the code lands in the binary
+//   moves a step by a few percent, bench/RESULTS.md);
 //   Generates the specimen (not timed); with --checkpoint, restores the state a run of that
 //   scenario saved (run/checkpoint: a beam cracked half way through, say; the specimen must be the
 //   same, the scenario's hash is not checked, so a copy of the scenario with other solver or
@@ -44,6 +47,7 @@
 #include <vector>
 
 #include "rcdem/config/scenario.hpp"
+#include "rcdem/config/scenario_overrides.hpp"
 #include "rcdem/core/error.hpp"
 #include "rcdem/core/huge_pages.hpp"
 #include "rcdem/core/progress.hpp"
@@ -231,11 +235,12 @@ struct BenchArgs {
   std::string path, checkpoint, save_dir;
   long steps = 0, warmup = 50, repeats = 1;
   std::vector<int> threads;  // --threads: each count (0: auto) timed from the same state
+  std::vector<std::string> overrides;  // --set KEY=VALUE, in order
 };
 
 const char* const kUsage =
     "usage: rcdem_step_bench SCENARIO.toml STEPS [WARMUP=50] [REPEATS=1] [--checkpoint FILE] "
-    "[--save-checkpoint DIR] [--threads N|auto,...]\n";
+    "[--save-checkpoint DIR] [--threads N|auto,...] [--set KEY=VALUE ...]\n";
 
 std::vector<int> parse_threads(const std::string& text) {
   std::vector<int> out;
@@ -258,8 +263,8 @@ bool parse_args(int argc, char** argv, BenchArgs& a) {
   try {
     for (int i = 1; i < argc; ++i) {
       const std::string opt = argv[i];
-      const bool takes_value =
-          opt == "--checkpoint" || opt == "--save-checkpoint" || opt == "--threads";
+      const bool takes_value = opt == "--checkpoint" || opt == "--save-checkpoint" ||
+                               opt == "--threads" || opt == "--set";
       if (!takes_value) {
         pos.push_back(opt);
         continue;
@@ -272,6 +277,7 @@ bool parse_args(int argc, char** argv, BenchArgs& a) {
       if (opt == "--checkpoint") a.checkpoint = v;
       if (opt == "--save-checkpoint") a.save_dir = v;
       if (opt == "--threads") a.threads = parse_threads(v);
+      if (opt == "--set") a.overrides.push_back(v);
     }
     if (pos.size() < 2 || pos.size() > 4) {
       std::fprintf(stderr, "%s", kUsage);
@@ -387,7 +393,7 @@ int main(int argc, char** argv) {
   rcdem::Progress::set_quiet_default(true);  // no generation progress lines among the results
   try {
     const auto g0 = std::chrono::steady_clock::now();
-    const rcdem::Scenario sc = rcdem::load_scenario(a.path);
+    const rcdem::Scenario sc = rcdem::config::load_scenario_on_seed(a.path, {}, a.overrides);
     rcdem::Simulation sim(sc, rcdem::build_specimen(sc));
     if (!a.checkpoint.empty()) {
       // Only the simulation's sections are read; the specimen's fingerprint is still checked.

@@ -76,6 +76,7 @@ struct SolverSettings {
   bool condense_elastic_contacts = true;           // contact/elastic_condensation.hpp
   bool hold_unloading_contacts = true;             // contact/held_contacts.hpp
   bool hold_softening_contacts = true;             // ... softening ones too
+  bool hold_intact_contacts = true;                // ... intact ones near their limits too
 };
 
 // loading.adaptive_rate and its bounds (solver/loading_rate.hpp).

@@ -378,6 +378,13 @@ void declare_solver(Declarations& s) {
               "contact whose softening hold ends within 8 steps waits 64 visits before the next). "
               "false: only contacts whose points stay inside their envelopes are held."),
         Need::Default, &S::solver, &V::hold_softening_contacts);
+  s.key(typed("solver.hold_intact_contacts", KeyType::Boolean, Range{},
+              "With hold_unloading_contacts: hold too an intact concrete contact that the "
+              "condensation's bound sends to its points (near an elastic limit), while its points "
+              "stay below their limits by the held contacts' own bound, which starts from the "
+              "points and is tighter (docs/model.md). The same results to rounding; a cracked "
+              "specimen's step is faster. false: such contacts visit their points."),
+        Need::Default, &S::solver, &V::hold_intact_contacts);
 }
 
 // The plates.

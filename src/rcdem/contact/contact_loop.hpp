@@ -413,9 +413,9 @@ template <typename Law>
 }
 
 // The visited contacts `visit[0, count)` of the block from `begin`, just evaluated in their frames
-// `frames[c - begin]`, that are damaged and have every point inside its room are held from the
-// next step (hold_contact; u_nu > 0: softening points too, unless the contact's softening clock
-// makes it wait: each visit then counts one off).
+// `frames[c - begin]`, that are damaged (or intact, with HeldContacts::intact) and have every point
+// inside its room are held from the next step (hold_contact; u_nu > 0: softening points too,
+// unless the contact's softening clock makes it wait: each visit then counts one off).
 [[gnu::noinline]] inline void hold_visited_contacts(const ContactInputs& in, const ContactState& cs,
                                                     ElasticCondensation& cond, const Index* visit,
                                                     Index count, const ContactFrame* frames,
@@ -423,7 +423,7 @@ template <typename Law>
   const ContactNetwork& net = in.net;
   for (Index k = 0; k < count; ++k) {
     const Index c = visit[k];
-    if (cond.intact[c] || !cond.eligible[c]) continue;
+    if (!cond.eligible[c] || (cond.intact[c] && !cond.held.intact)) continue;
     Real soften = u_nu;
     if (u_nu > 0) {
       std::int16_t& clock = cond.held.softening_clock[static_cast<std::size_t>(c)];
@@ -496,7 +496,9 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
         Real held_damage = 0.0;
         for (Index c = begin; c < end; ++c) {
           const bool was_condensed = cond->condensed[c];
-          const bool keep = cond->intact[c] && block.below_limits[c - begin];
+          // An intact contact held (HeldContacts::intact) stays held until it leaves its room.
+          const bool keep =
+              cond->intact[c] && block.below_limits[c - begin] && !cond->held.held[c];
           cond->condensed[c] = keep;
           if (keep) continue;
           if (was_condensed) evaluate_contact<Law, true>(law, *previous, cs, cond, c);

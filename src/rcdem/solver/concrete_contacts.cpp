@@ -22,6 +22,7 @@ ConcreteContacts::ConcreteContacts(const Scenario& sc, const ContactNetwork& net
     condensation_ = ElasticCondensation::build(net, bodies.position0);
     condensation_.held.enabled = sc.solver.hold_unloading_contacts;
     condensation_.held.softening = sc.solver.hold_softening_contacts;
+    condensation_.held.intact = sc.solver.hold_intact_contacts;
   }
 }
 
