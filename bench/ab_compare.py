@@ -11,7 +11,11 @@ were equally fast. A change is worth keeping when the sign test says so, not whe
 Usage:
   bench/ab_compare.py ROUNDS BIN_A BIN_B [ARG...]
     BIN_A, BIN_B: two rcdem_step_bench binaries (e.g. a worktree's build of the parent and this
-    tree's), each run as `BIN ARG...` with the environment as given (set OMP_NUM_THREADS).
+    tree's), each run as `BIN ARG...` with the environment as given (set OMP_NUM_THREADS). Each
+    may carry arguments of its own, split as a shell splits words (no shell runs): one binary with
+    and without a setting, "build/bench/rcdem_step_bench --set KEY=false" against
+    build/bench/rcdem_step_bench, compares code in the same place (where the code lands moves the
+    step by a few percent on some machines, bench/RESULTS.md).
   Example:
     git worktree add -f /tmp/old HEAD && cmake -S /tmp/old -B /tmp/old/build -G Ninja \\
       -DCMAKE_BUILD_TYPE=Release -DRCDEM_BUILD_TESTS=OFF && ninja -C /tmp/old/build rcdem_step_bench
@@ -22,14 +26,19 @@ Prints one line per round, then a summary; the last line is `ab_median_ratio=<B/
 """
 import math
 import re
+import shlex
 import statistics
 import subprocess
 import sys
 
 
-def steps_per_s(binary, args):
+def steps_per_s(command, args):
+    words = shlex.split(command)
+    if not words:
+        sys.exit("ab_compare: BIN_A and BIN_B must name a binary")
+    binary, *own = words
     try:
-        out = subprocess.run([binary, *args], capture_output=True, text=True)
+        out = subprocess.run([binary, *args, *own], capture_output=True, text=True)
     except OSError as e:
         sys.exit(f"ab_compare: cannot run {binary}: {e.strerror}")
     if out.returncode != 0:
