@@ -4,7 +4,7 @@
 // Usage: rcdem_step_bench SCENARIO.toml STEPS [WARMUP=50] [REPEATS=1] [--checkpoint FILE]
 //                         [--save-checkpoint DIR] [--threads N|auto,...] [--set KEY=VALUE ...]
 //   --set: as rcdem run's (config/scenario_overrides.hpp), so that one binary times two settings
-//   of a key (bench/ab_compare.py with a wrapper that adds it: where the code lands in the binary
+//   of a key (bench/ab_compare.py "BIN --set KEY=false" BIN: where the code lands in the binary
 //   moves a step by a few percent, bench/RESULTS.md);
 //   Generates the specimen (not timed); with --checkpoint, restores the state a run of that
 //   scenario saved (run/checkpoint: a beam cracked half way through, say; the specimen must be the
@@ -234,7 +234,7 @@ namespace {
 struct BenchArgs {
   std::string path, checkpoint, save_dir;
   long steps = 0, warmup = 50, repeats = 1;
-  std::vector<int> threads;  // --threads: each count (0: auto) timed from the same state
+  std::vector<int> threads;            // --threads: each count (0: auto) timed from the same state
   std::vector<std::string> overrides;  // --set KEY=VALUE, in order
 };
 

@@ -5,8 +5,11 @@
 // (its broken_and_open), C broken, closed and sticking (|fs| below mu_c (-fn): linear with kn, ks
 // while it stays so), K broken and carrying otherwise (sliding), X the rest (at a cap, shear
 // damage read). Also the visited contacts whose softening clock makes them wait, and the held
-// contacts by the kinds of their points at their entry. The holds take I+B and S+B
-// (held_contacts.hpp).
+// contacts by the kinds of their points at their entry. The holds take I+B and S+B, and intact
+// contacts the condensation's bound sends to their points (held_contacts.hpp). Over the STEPS
+// steps, the holds' turnover: contacts held after a step and not before it (entered) and the
+// reverse (released), intact and damaged apart (a contact released and held again within one
+// step is not seen).
 // With FOLLOW > 0, the contacts that mix I and S points are then followed for FOLLOW steps: how
 // many steps each stays visited with every point of its kind at the start (I still I, S still S
 // and opening further), what a hold of mixed contacts could at most keep (its bound refuses some
@@ -14,6 +17,7 @@
 // Usage: rcdem_visit_census SCENARIO.toml STEPS CHECKPOINT [FOLLOW]
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <map>
 #include <string>
@@ -162,6 +166,25 @@ void follow_mixed(rcdem::Simulation& sim, rcdem::Real mu_c, long steps) {
                 100.0 * static_cast<double>(n) / static_cast<double>(list.size()));
 }
 
+// STEPS steps, printing the holds' turnover (the file's head).
+void step_counting_holds(rcdem::Simulation& sim, long steps) {
+  const auto& cond = concrete_part(sim).condensation();
+  long entered[2] = {0, 0}, released[2] = {0, 0};  // [0] damaged, [1] intact
+  for (long s = 0; s < steps; ++s) {
+    const std::vector<std::uint8_t> before = cond.held.held;
+    sim.step();
+    for (std::size_t i = 0; i < before.size(); ++i) {
+      const int intact = cond.intact[i] ? 1 : 0;
+      entered[intact] += !before[i] && cond.held.held[i];
+      released[intact] += before[i] && !cond.held.held[i];
+    }
+  }
+  std::printf(
+      "holds over %ld steps: intact entered %ld, released %ld; damaged entered %ld, "
+      "released %ld\n",
+      steps, entered[1], released[1], entered[0], released[0]);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -186,7 +209,7 @@ int main(int argc, char** argv) {
     rcdem::Simulation sim(sc, rcdem::build_specimen(sc));
     const auto header = rcdem::io::inspect_checkpoint(argv[3]);
     rcdem::io::restore_checkpoint(argv[3], rcdem::io::CheckpointParts{&sim}, header.scenario_hash);
-    for (long s = 0; s < steps; ++s) sim.step();
+    step_counting_holds(sim, steps);
     census(sim, sc.contact.mu_c);
     if (follow > 0) follow_mixed(sim, sc.contact.mu_c, follow);
   } catch (const rcdem::Error& e) {

@@ -197,12 +197,12 @@ TEST(HeldContacts, ReadsAndCheckpointsDoNotChangeTheRun) {
 // condensation's bound (total displacement, whole-rotation spread) sends them to their points, and
 // the held contacts' bound (each point's room at entry, the change since then row by row) holds
 // them. So the pulled box holds a contact before any point is damaged, and intact contacts are
-// among the held ones over its first half (42,607 contact-steps), only with the key on. (That they stay below their limits while held:
-// NoHeldPointLeavesItsRoom, which checks every held contact's points, intact ones too.)
+// among the held ones over its first half, only with the key on. (That they stay below their
+// limits while held: NoHeldPointLeavesItsRoom, which checks every held contact's points, intact
+// ones too.)
 TEST(HeldContacts, IntactContactsNearTheirLimitsAreHeldOnlyWithTheKey) {
   for (const bool on : {true, false}) {
-    const Scenario sc = test::pulled_box(
-        "BL", on ? "" : "hold_intact_contacts = false", 0.05);
+    const Scenario sc = test::pulled_box("BL", on ? "" : "hold_intact_contacts = false", 0.05);
     Simulation sim(sc, build_specimen(sc));
     const ConcreteContacts* concrete = concrete_part(sim);
     ASSERT_NE(concrete, nullptr);
@@ -222,9 +222,10 @@ TEST(HeldContacts, IntactContactsNearTheirLimitsAreHeldOnlyWithTheKey) {
       EXPECT_EQ(held_before_damage, 0);
       EXPECT_EQ(held_intact, 0);
     }
-    std::printf("hold_intact_contacts = %d: most held before any damage %lld, intact held "
-                "contact-steps %lld\n",
-                on, static_cast<long long>(held_before_damage), static_cast<long long>(held_intact));
+    std::printf(
+        "hold_intact_contacts = %d: most held before any damage %lld, intact held "
+        "contact-steps %lld\n",
+        on, static_cast<long long>(held_before_damage), static_cast<long long>(held_intact));
   }
 }
 

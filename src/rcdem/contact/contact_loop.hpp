@@ -497,8 +497,7 @@ void evaluate_contacts(const Law& law, const ContactInputs& in, ContactState& cs
         for (Index c = begin; c < end; ++c) {
           const bool was_condensed = cond->condensed[c];
           // An intact contact held (HeldContacts::intact) stays held until it leaves its room.
-          const bool keep =
-              cond->intact[c] && block.below_limits[c - begin] && !cond->held.held[c];
+          const bool keep = cond->intact[c] && block.below_limits[c - begin] && !cond->held.held[c];
           cond->condensed[c] = keep;
           if (keep) continue;
           if (was_condensed) evaluate_contact<Law, true>(law, *previous, cs, cond, c);

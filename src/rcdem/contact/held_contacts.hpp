@@ -66,8 +66,8 @@
 // elastic limit, is held the same way (solver.hold_intact_contacts, on by default): its points are
 // inside their envelope, with rooms to their caps from where they stand at entry, and the change
 // since entry is bounded row by row, where the condensation bounds the total displacement with the
-// whole relative rotation. It stays held, and is not condensed, until it leaves its room: on the
-// cracked AN4 beam nearly every such hold lasts (2,246 entries and 123 releases in 150 steps).
+// whole relative rotation. It stays held, and is not condensed, until it leaves its room (such
+// holds mostly last: docs/model.md).
 // Where softening contacts open only a few steps at a time (a beam's crack opens in bursts and its
 // faces ring), a softening hold costs more (entry sums, catch-up) than the visits it saves: a
 // contact whose softening hold ends within kShortSofteningHold steps is not held as softening
